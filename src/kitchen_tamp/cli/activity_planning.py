@@ -1,0 +1,159 @@
+"""``pddl/activity_planning.py``: solve a PDDL problem with our searches and print the plans."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.planning import (
+    SEARCH_DESCRIPTIONS,
+    SEARCHES,
+    PlanningInputError,
+    SearchResult,
+    Task,
+    load_task,
+    plan,
+    plan_text,
+    validate_plan,
+)
+from kitchen_tamp.planning.pddl_files import PDDL_DIR
+
+DEFAULT_PLANNERS = ("bfs", "ehc")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="activity_planning.py",
+        description="Plan a PDDL problem with breadth-first search, enforced hill climbing "
+                    "(h_FF), greedy best-first search (h_FF) or A* (h_max), and print the plans.")
+    parser.add_argument("problem", nargs="?", default=str(PDDL_DIR / "problem.pddl"),
+                        help="problem file; a bare name is also looked up in pddl/ "
+                             "(default: the kitchen problem.pddl)")
+    parser.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
+    parser.add_argument("--planner", choices=[*SEARCHES, "all"], action="append",
+                        help="search to run; repeat for several (default: bfs and ehc)")
+    parser.add_argument("--plan-out", type=Path, metavar="FILE",
+                        help="write the last requested planner's plan in IPC form")
+    parser.add_argument("--json", action="store_true", help="print one JSON document")
+    parser.add_argument("--timeout", type=float, metavar="S",
+                        help="time budget in seconds for each planner")
+    return parser
+
+
+def _planners(requested: Sequence[str] | None) -> list[str]:
+    if not requested:
+        return list(DEFAULT_PLANNERS)
+    names: list[str] = []
+    for name in requested:
+        for expanded in (SEARCHES if name == "all" else [name]):
+            if expanded not in names:
+                names.append(expanded)
+    return names
+
+
+def _write_atomically(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def _result_json(task: Task, result: SearchResult) -> dict[str, Any]:
+    return {
+        "planner": result.planner,
+        "description": SEARCH_DESCRIPTIONS[result.planner],
+        "status": result.status,
+        "message": result.message,
+        "plan": [action.text for action in result.plan] if result.plan is not None else None,
+        "length": len(result.plan) if result.plan is not None else None,
+        "expanded": result.expanded,
+        "generated": result.generated,
+        "evaluated": result.evaluated,
+        "seconds": round(result.seconds, 6),
+    }
+
+
+def _print_result(result: SearchResult) -> None:
+    title = f"{result.planner.upper()} plan, {SEARCH_DESCRIPTIONS[result.planner]}:"
+    print(title)
+    if result.plan is None:
+        print(f"  no plan: {result.message}")
+    else:
+        for number, action in enumerate(result.plan, start=1):
+            print(f"{number}. {action}")
+        if not result.plan:
+            print("  (empty plan: the goal already holds)")
+    length = "-" if result.plan is None else str(len(result.plan))
+    print(f"length {length}, expanded {result.expanded} states, "
+          f"evaluated {result.evaluated}, {result.seconds:.4f} s")
+    print("--------------")
+
+
+def run(args: argparse.Namespace) -> int:
+    started = time.perf_counter()
+    task = load_task(args.problem, args.domain)
+    ground_seconds = time.perf_counter() - started
+    if args.timeout is not None and args.timeout <= 0:
+        raise PlanningInputError("--timeout must be a positive number of seconds")
+    results: list[SearchResult] = []
+    if not args.json:
+        print(f"problem {task.name} (domain {task.domain_name}): {len(task.objects)} objects, "
+              f"{len(task.atoms)} atoms, {len(task.actions)} ground actions "
+              f"(parsed and grounded in {ground_seconds:.3f} s)")
+        print("--------------")
+    for name in _planners(args.planner):
+        result = plan(task, name, time_budget=args.timeout)
+        if result.plan is not None:
+            check = validate_plan(task, result.plan)
+            if not check.valid:
+                raise AssertionError(f"{name} returned an invalid plan: {check.message}")
+        results.append(result)
+        if not args.json:
+            _print_result(result)
+    last = results[-1]
+    if args.plan_out is not None and last.plan is not None:
+        _write_atomically(args.plan_out, plan_text(last.plan))
+    if args.json:
+        print(json.dumps({
+            "problem": task.name,
+            "domain": task.domain_name,
+            "objects": len(task.objects),
+            "atoms": len(task.atoms),
+            "actions": len(task.actions),
+            "ground_seconds": round(ground_seconds, 6),
+            "results": [_result_json(task, r) for r in results],
+        }, indent=2))
+    failed = [r for r in results if not r.solved]
+    for result in failed:
+        print(f"{result.planner}: {result.message}", file=sys.stderr)
+    if args.plan_out is not None and last.plan is None:
+        print(f"{args.plan_out}: not written, {last.planner} found no plan", file=sys.stderr)
+    return int(ExitCode.NO_PLAN if failed else ExitCode.SOLVED)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return run(args)
+    except PlanningInputError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return int(ExitCode.BAD_INPUT)
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return int(ExitCode.NO_PLAN)
+    except Exception as error:  # the last line of defence: one line, exit 3
+        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
+        return int(ExitCode.INTERNAL_ERROR)

@@ -1,0 +1,132 @@
+"""Reading PDDL files with the ``pddl`` package, with errors that name the place.
+
+The ``pddl`` package parses; it does not check that a problem only uses the
+domain's predicates and objects, nor that an action only uses its own
+parameters. ``grounding`` does that, using ``locate`` here to find the line of
+the offending name in the file text.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from pddl.core import Domain, Problem
+from pddl.parser.domain import DomainParser
+from pddl.parser.problem import ProblemParser
+
+from kitchen_tamp.planning.errors import PlanningInputError
+
+PDDL_DIR = Path(__file__).resolve().parents[3] / "pddl"
+"""The repository's ``pddl/`` folder, where bare problem names are also looked up."""
+
+
+@dataclass(frozen=True)
+class PddlSource:
+    """A parsed PDDL file with its text, kept for error messages."""
+
+    path: Path
+    text: str
+
+    def locate(self, name: str, after: str | None = None) -> tuple[int | None, int | None]:
+        """Line and column of the first whole-word ``name`` (after ``after`` if given)."""
+        start = 0
+        if after is not None:
+            found = re.search(re.escape(after), self.text, re.IGNORECASE)
+            start = found.start() if found else 0
+        pattern = r"(?<![\w\-?])" + re.escape(name) + r"(?![\w\-])"
+        match = re.compile(pattern, re.IGNORECASE).search(self.text, start)
+        if match is None:
+            return None, None
+        line = self.text.count("\n", 0, match.start()) + 1
+        column = match.start() - (self.text.rfind("\n", 0, match.start()) + 1) + 1
+        return line, column
+
+    def error(self, message: str, name: str | None = None, after: str | None = None) -> PlanningInputError:
+        """An input error placed at ``name``'s first occurrence, if found."""
+        line, column = self.locate(name, after) if name else (None, None)
+        return PlanningInputError(message, self.path, line, column)
+
+
+def resolve_problem_path(problem: str | Path) -> Path:
+    """The problem file: as given, else a bare name looked up in ``pddl/``.
+
+    This lets ``activity_planning.py problem_hard.pddl`` work from the
+    repository root as well as from inside ``pddl/``.
+    """
+    path = Path(problem)
+    if path.exists() or path.parent != Path("."):
+        return path
+    candidate = PDDL_DIR / path
+    return candidate if candidate.exists() else path
+
+
+def _read(path: Path, what: str) -> str:
+    if not path.exists():
+        raise PlanningInputError(f"{what} file not found", path)
+    if path.is_dir():
+        raise PlanningInputError(f"{what} path is a directory, expected a PDDL file", path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise PlanningInputError(f"cannot read {what} file: {error}", path) from error
+
+
+def _syntax_error(error: Exception, path: Path, what: str) -> PlanningInputError:
+    line = getattr(error, "line", None)
+    column = getattr(error, "column", None)
+    if isinstance(error, UnexpectedToken):
+        token = "end of file" if error.token.type == "$END" else repr(str(error.token))
+        expected = ", ".join(sorted(error.expected)[:6])
+        message = f"{what} syntax error: unexpected {token}, expected one of {expected}"
+        if error.token.type == "$END":
+            message = f"{what} syntax error: file ends early (unbalanced parentheses?)"
+    elif isinstance(error, UnexpectedCharacters):
+        message = f"{what} syntax error: unexpected {error.char!r}"
+    elif isinstance(error, UnexpectedEOF):
+        message = f"{what} syntax error: file ends early (unbalanced parentheses?)"
+    else:
+        first_line = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+        message = f"invalid {what}: {first_line}"
+    if isinstance(line, int) and line < 1:
+        line = column = None
+    return PlanningInputError(message, path, line if isinstance(line, int) else None,
+                              column if isinstance(column, int) else None)
+
+
+@cache
+def _domain_parser() -> DomainParser:
+    """Building the Lark grammar costs ~0.1 s, so each process builds it once."""
+    return DomainParser()
+
+
+@cache
+def _problem_parser() -> ProblemParser:
+    return ProblemParser()
+
+
+def parse_domain(path: Path) -> tuple[Domain, PddlSource]:
+    """Parse a domain file; a syntax error names file, line and column."""
+    text = _read(path, "domain")
+    try:
+        domain = _domain_parser()(text)
+    except UnexpectedInput as error:
+        raise _syntax_error(error, path, "domain") from None
+    except Exception as error:  # the pddl package raises assorted errors on bad input
+        raise _syntax_error(error, path, "domain") from None
+    return domain, PddlSource(path, text)
+
+
+def parse_problem(path: Path) -> tuple[Problem, PddlSource]:
+    """Parse a problem file; a syntax error names file, line and column."""
+    text = _read(path, "problem")
+    try:
+        problem = _problem_parser()(text)
+    except UnexpectedInput as error:
+        raise _syntax_error(error, path, "problem") from None
+    except Exception as error:  # the pddl package raises assorted errors on bad input
+        raise _syntax_error(error, path, "problem") from None
+    return problem, PddlSource(path, text)

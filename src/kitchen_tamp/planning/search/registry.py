@@ -1,0 +1,43 @@
+"""Searches by name: the one place the CLI and the benchmarks look them up."""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+from kitchen_tamp.planning.search.best_first import astar_search, greedy_best_first_search
+from kitchen_tamp.planning.search.breadth_first import breadth_first_search
+from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
+from kitchen_tamp.planning.search.result import SearchResult
+from kitchen_tamp.planning.task import Task
+
+
+class Search(Protocol):
+    def __call__(
+        self, task: Task, *, time_budget: float | None = None, max_expansions: int | None = None
+    ) -> SearchResult: ...
+
+
+SEARCHES: dict[str, Search] = {
+    "bfs": breadth_first_search,
+    "ehc": enforced_hill_climbing,
+    "gbfs": greedy_best_first_search,
+    "astar": astar_search,
+}
+"""Name -> search. ``bfs`` and ``astar`` (with h_max) return shortest plans."""
+
+SEARCH_DESCRIPTIONS: dict[str, str] = {
+    "bfs": "breadth-first search (optimal)",
+    "ehc": "enforced hill climbing with h_FF",
+    "gbfs": "greedy best-first search with h_FF",
+    "astar": "A* with h_max (optimal)",
+}
+
+
+def plan(task: Task, planner: str = "bfs", *, time_budget: float | None = None,
+         max_expansions: int | None = None) -> SearchResult:
+    """Run the named search on ``task``."""
+    try:
+        search = SEARCHES[planner]
+    except KeyError:
+        raise ValueError(f"unknown planner {planner!r}; choose from {', '.join(SEARCHES)}") from None
+    return search(task, time_budget=time_budget, max_expansions=max_expansions)

@@ -1,0 +1,136 @@
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from kitchen_tamp.cli.activity_planning import main
+from tests.planning.conftest import DATA, KITCHEN, REPO
+
+DOMAIN = str(KITCHEN / "domain.pddl")
+
+
+def run_main(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def write(tmp_path: Path, text: str, name: str = "problem.pddl") -> str:
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+def test_default_prints_numbered_bfs_and_ehc_plans(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run_main(capsys)
+    assert code == 0
+    assert "BFS plan" in out and "EHC plan" in out
+    assert "1. open drawer" in out
+    assert "length 5" in out and "expanded" in out
+
+
+def test_bare_problem_name_is_found_from_any_directory(tmp_path: Path) -> None:
+    script = REPO / "pddl" / "activity_planning.py"
+    for cwd in (REPO, REPO / "pddl", tmp_path):
+        result = subprocess.run([sys.executable, str(script), "problem_hard.pddl"], cwd=cwd,
+                                capture_output=True, text=True)
+        assert result.returncode == 0, result.stderr
+        assert "7. placeOn spam stove" in result.stdout
+
+
+def test_plan_out_writes_the_last_planner_in_ipc_form(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    out_file = tmp_path / "sub" / "kitchen.plan"
+    code, _, _ = run_main(capsys, "problem_hard.pddl", "--planner", "ehc", "--planner", "astar",
+                          "--plan-out", str(out_file))
+    assert code == 0
+    steps = [line for line in out_file.read_text().splitlines() if not line.startswith(";")]
+    assert steps[0] == "(open drawer)" and len(steps) == 7
+
+
+def test_json_output_is_one_document_with_every_planner(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run_main(capsys, "--planner", "all", "--json")
+    assert code == 0
+    document = json.loads(out)
+    assert [r["planner"] for r in document["results"]] == ["bfs", "ehc", "gbfs", "astar"]
+    assert all(r["status"] == "solved" and r["length"] == 5 for r in document["results"]
+               if r["planner"] in ("bfs", "astar"))
+
+
+def test_unsolvable_problem_exits_1_and_says_so(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run_main(capsys, str(DATA / "delivery_unsolvable.pddl"), "--domain",
+                            str(DATA / "delivery_domain.pddl"), "--planner", "bfs")
+    assert code == 1
+    assert "unsolvable: none of the 8 reachable states" in err
+
+
+def test_ehc_dead_end_exits_1(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    plan_file = tmp_path / "x.plan"
+    code, _, err = run_main(capsys, str(DATA / "dead_end_problem.pddl"), "--domain",
+                            str(DATA / "dead_end_domain.pddl"), "--planner", "ehc",
+                            "--plan-out", str(plan_file))
+    assert code == 1 and "dead end" in err
+    assert not plan_file.exists()
+
+
+def test_timeout_exhausted_exits_1(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run_main(capsys, "--planner", "bfs", "--timeout", "1e-9")
+    assert code in (0, 1)  # a tiny problem may still finish within the first check
+    if code == 1:
+        assert "budget" in err
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("(define (problem p) (:domain kitchen) (:objects sugar - box) (:init (armClear)"
+         " (:goal (holding sugar)))", "problem.pddl:1:"),
+        ("(define (problem p) (:domain kitchen) (:objects sugar - box)\n"
+         " (:init (armClear))\n (:goal (flying sugar)))", "problem.pddl:3:10: problem :goal uses "
+                                                          "undefined predicate 'flying'"),
+        ("(define (problem p) (:domain kitchen) (:objects sugar - box)\n"
+         " (:init (armClear) (holding salt)) (:goal (holding sugar)))",
+         "problem.pddl:2:29: problem :init uses undeclared object 'salt'"),
+        ("(define (problem p) (:domain kitchen) (:objects sugar - box)\n"
+         " (:init (armClear sugar)) (:goal (holding sugar)))",
+         "predicate 'armClear' takes 0 arguments, got 1"),
+        ("(define (problem p) (:domain bakery) (:objects sugar - box)"
+         " (:init (armClear)) (:goal (holding sugar)))", "problem is for domain 'bakery'"),
+        ("(define (problem p) (:domain kitchen) (:objects sugar - crate)"
+         " (:init (armClear)) (:goal (holding sugar)))", "undeclared type 'crate'"),
+        ("", "problem syntax error"),
+    ],
+)
+def test_bad_problem_gives_one_line_and_exit_2(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path, text: str, expected: str) -> None:
+    code, out, err = run_main(capsys, write(tmp_path, text), "--domain", DOMAIN)
+    assert code == 2
+    assert expected in err
+    assert len(err.strip().splitlines()) == 1
+    assert "Traceback" not in out + err
+
+
+def test_bad_domain_names_the_undeclared_variable(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    domain = (KITCHEN / "domain.pddl").read_text().replace(
+        ":precondition (and (boxOn ?b ?s) (armClear))", ":precondition (and (boxOn ?b ?x) (armClear))")
+    domain_file = write(tmp_path, domain, "domain.pddl")
+    code, _, err = run_main(capsys, str(KITCHEN / "problem.pddl"), "--domain", domain_file)
+    assert code == 2
+    assert "domain.pddl:" in err and "action 'pickUp' uses undeclared variable '?x'" in err
+
+
+def test_missing_file_and_bad_options_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run_main(capsys, "no/such/file.pddl")
+    assert code == 2 and "problem file not found" in err
+    code, _, err = run_main(capsys, "--domain", "nowhere.pddl")
+    assert code == 2 and "domain file not found" in err
+    code, _, err = run_main(capsys, "--timeout", "-1")
+    assert code == 2
+    with pytest.raises(SystemExit) as exit_info:
+        main(["--planner", "dijkstra"])
+    assert exit_info.value.code == 2

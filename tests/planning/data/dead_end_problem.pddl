@@ -1,0 +1,4 @@
+(define (problem tempting)
+  (:domain trap)
+  (:init (token))
+  (:goal (and (a) (b))))

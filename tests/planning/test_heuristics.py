@@ -1,0 +1,45 @@
+from __future__ import annotations
+
+from kitchen_tamp.planning import RelaxedExploration, Task
+from kitchen_tamp.planning.heuristics import INFINITY
+from tests.planning.brute_force import goal_distances, reachable_states
+
+
+def test_h_max_is_admissible_and_below_h_add(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task)
+    distances = goal_distances(small_task)
+    for state in reachable_states(small_task):
+        h_max = exploration.h_max(state)
+        if state in distances:
+            assert h_max <= distances[state]
+        assert h_max <= exploration.h_add(state)
+
+
+def test_heuristics_are_zero_exactly_at_goals_and_infinite_only_at_dead_ends(
+        small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task)
+    distances = goal_distances(small_task)
+    for state in reachable_states(small_task):
+        h_ff = exploration.h_ff(state)
+        if small_task.is_goal(state):
+            assert h_ff == 0
+        elif small_task.negative_goal_atoms == frozenset():
+            assert h_ff > 0
+        if h_ff == INFINITY:
+            assert state not in distances  # never prunes a state that has a plan
+
+
+def test_relaxed_plan_reaches_the_goal_when_deletes_are_ignored(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task)
+    relaxed = exploration.relaxed_plan(small_task.initial_state)
+    assert relaxed is not None
+    state = small_task.initial_state
+    remaining = set(relaxed)
+    while remaining:  # apply in any executable order, ignoring deletes
+        ready = [i for i in sorted(remaining) if state & small_task.actions[i].pre
+                 == small_task.actions[i].pre]
+        assert ready, "relaxed plan is not executable under the delete relaxation"
+        for i in ready:
+            state |= small_task.actions[i].add
+            remaining.discard(i)
+    assert state & small_task.goal == small_task.goal
