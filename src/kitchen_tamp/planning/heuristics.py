@@ -1,11 +1,14 @@
 """Delete-relaxation heuristics: h_max, h_add and h_FF.
 
-All three come from one exploration of the relaxed task (delete effects and
-negative preconditions ignored): a generalised Dijkstra over atoms in which an
-action becomes usable once its last precondition is reached, with cost one plus
-the max (h_max) or the sum (h_add) of its preconditions' costs. h_FF extracts a
-relaxed plan backwards from the goal through the h_add best supporters and
-counts its actions.
+All three explore the relaxed task (delete effects and negative preconditions
+ignored). With unit costs, h_max and h_FF need only the relaxed planning graph:
+layer by layer, every action whose preconditions are all reached fires at once,
+which is a handful of bitset operations per action and layer. h_max is the
+index of the first layer holding the whole goal; h_FF extracts a relaxed plan
+backwards from the goal, choosing for each subgoal an achiever from the layer
+before the subgoal first appears (as in Hoffmann and Nebel's FF), and counts
+its actions. h_add needs real sums, so it runs a generalised Dijkstra over
+atoms in which an action becomes usable once its last precondition is reached.
 
 h_max is admissible (A* with it returns optimal plans); h_add and h_FF are not,
 but guide greedy search much better.
@@ -42,9 +45,12 @@ class RelaxedExploration:
         self.actions_using = [tuple(u) for u in users]
         self.goal_ids = tuple(bits(task.goal))
         self.n_atoms = n_atoms
+        self.pre_masks = [a.pre for a in task.actions]
+        self.add_masks = [a.add for a in task.actions]
+        self.all_actions = list(range(len(task.actions)))
 
     def explore(self, state: State, combine_max: bool) -> tuple[list[float], list[int]]:
-        """Cost of every atom from ``state``, and the best supporter of each (-1: none).
+        """h_add/h_max cost of every atom from ``state`` and its best supporter (-1: none).
 
         Stops as soon as every goal atom has its final cost.
         """
@@ -93,11 +99,42 @@ class RelaxedExploration:
                             heappush(heap, (new_cost, added))
         return cost, supporter
 
+    def layers(self, state: State) -> tuple[list[int], list[list[int]]] | None:
+        """The relaxed planning graph from ``state`` up to the first layer with the goal.
+
+        Returns the atoms new in each layer (layer 0 is ``state``) and the actions
+        first applicable in each layer, or None if the goal is relaxed-unreachable.
+        """
+        goal = self.task.goal
+        reached = state
+        new_atoms = [state]
+        new_actions: list[list[int]] = []
+        pending = self.all_actions
+        pre, add = self.pre_masks, self.add_masks
+        while reached & goal != goal:
+            fired: list[int] = []
+            waiting: list[int] = []
+            added = 0
+            for action in pending:
+                if pre[action] & reached == pre[action]:
+                    fired.append(action)
+                    added |= add[action]
+                else:
+                    waiting.append(action)
+            added &= ~reached
+            if not added:
+                return None
+            new_actions.append(fired)
+            new_atoms.append(added)
+            reached |= added
+            pending = waiting
+        return new_atoms, new_actions
+
     def h_max(self, state: State) -> float:
         if self.task.trivially_unsolvable:
             return INFINITY
-        cost, _ = self.explore(state, combine_max=True)
-        return max((cost[g] for g in self.goal_ids), default=0.0)
+        graph = self.layers(state)
+        return INFINITY if graph is None else float(len(graph[0]) - 1)
 
     def h_add(self, state: State) -> float:
         if self.task.trivially_unsolvable:
@@ -105,27 +142,31 @@ class RelaxedExploration:
         cost, _ = self.explore(state, combine_max=False)
         return sum((cost[g] for g in self.goal_ids), 0.0)
 
-    def relaxed_plan(self, state: State) -> set[int] | None:
+    def relaxed_plan(self, state: State) -> list[int] | None:
         """Indices of the actions of a relaxed plan from ``state``, or None if there is none."""
         if self.task.trivially_unsolvable:
             return None
-        cost, supporter = self.explore(state, combine_max=False)
-        plan: set[int] = set()
-        seen = bytearray(self.n_atoms)
-        stack = [g for g in self.goal_ids if cost[g] > 0.0]
-        for g in stack:
-            if cost[g] == INFINITY:
-                return None
-        while stack:
-            atom = stack.pop()
-            if seen[atom]:
-                continue
-            seen[atom] = 1
-            action = supporter[atom]
-            if action < 0 or action in plan:
-                continue
-            plan.add(action)
-            stack.extend(p for p in self.preconditions_of[action] if cost[p] > 0.0)
+        graph = self.layers(state)
+        if graph is None:
+            return None
+        new_atoms, new_actions = graph
+        top = len(new_atoms) - 1
+        goals_at = [self.task.goal & atoms for atoms in new_atoms]
+        true_at = [0] * (top + 1)
+        pre, add = self.pre_masks, self.add_masks
+        plan: list[int] = []
+        for level in range(top, 0, -1):
+            open_goals = goals_at[level] & ~true_at[level]
+            while open_goals:
+                goal_bit = open_goals & -open_goals
+                achiever = next(a for a in new_actions[level - 1] if add[a] & goal_bit)
+                plan.append(achiever)
+                needs = pre[achiever]
+                for below in range(1, level):
+                    goals_at[below] |= needs & new_atoms[below]
+                true_at[level] |= add[achiever]
+                true_at[level - 1] |= add[achiever]
+                open_goals &= ~add[achiever]
         return plan
 
     def h_ff(self, state: State) -> float:

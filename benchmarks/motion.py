@@ -1,0 +1,321 @@
+"""Our RRT-Connect + shortcut against OMPL's RRTConnect + simplifySolution, in one run.
+
+Both planners answer the same queries through the same collision checker, at
+the same edge-check resolution, with the same time budget; OMPL calls the
+checker one configuration at a time, ours in batches. Every returned path is
+re-checked densely before it counts as a success.
+
+    .venv/bin/python benchmarks/motion.py                      # planar 7-link arm
+    .venv/bin/python benchmarks/motion.py --query-set joint_space_obstacles
+
+A query set is a function (count, seed) -> list[MotionQuery] in QUERY_SETS;
+the kitchen's queries (start, goal, space, checker) plug in the same way.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion import (
+    CollisionChecker,
+    ConfigurationSpace,
+    CountingSegmentChecker,
+    RrtConnectHyperparameters,
+    ShortcutHyperparameters,
+    densify_path,
+    path_length,
+    plan_rrt_connect,
+    shortcut_path,
+)
+
+EDGE_RESOLUTION = 0.01
+"""Joint-space distance (rad) between checked configurations, for both planners."""
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class MotionQuery:
+    """One planning problem: start and goal in a space, with its collision checker."""
+
+    name: str
+    start: FloatArray
+    goal: FloatArray
+    space: ConfigurationSpace
+    checker: CollisionChecker
+
+
+class PlanarArmWorld:
+    """A planar arm of `len(link_lengths)` revolute links among discs, checked in numpy."""
+
+    def __init__(self, link_lengths: FloatArray, disc_centers: FloatArray, radii: FloatArray):
+        self.link_lengths = link_lengths
+        self.disc_centers = disc_centers
+        self.radii = radii
+
+    def is_valid(self, qs: FloatArray) -> npt.NDArray[np.bool_]:
+        angles = np.cumsum(qs, axis=1)
+        steps = self.link_lengths[:, np.newaxis] * np.stack([np.cos(angles), np.sin(angles)], -1)
+        bases = np.cumsum(steps, axis=1) - steps  # (n, links, 2)
+        link = steps[:, :, np.newaxis, :]  # (n, links, 1, 2)
+        to_center = self.disc_centers[np.newaxis, np.newaxis] - bases[:, :, np.newaxis, :]
+        along = np.clip(np.sum(to_center * link, axis=-1) / np.sum(link * link, axis=-1), 0.0, 1.0)
+        gap = to_center - along[..., np.newaxis] * link
+        clear = np.einsum("nlkc,nlkc->nlk", gap, gap) > self.radii**2
+        return np.asarray(np.all(clear, axis=(1, 2)))
+
+    def segment_valid(self, q0: FloatArray, q1: FloatArray) -> bool:
+        return CountingSegmentChecker(self, EDGE_RESOLUTION).segment_valid(q0, q1)
+
+
+class JointSpaceObstacleWorld:
+    """Balls and axis-aligned boxes directly in joint space."""
+
+    def __init__(self, ball_centers: FloatArray, ball_radii: FloatArray, boxes: FloatArray):
+        self.ball_centers = ball_centers
+        self.ball_radii = ball_radii
+        self.boxes = boxes  # (k, 2, d): lower and upper corners
+
+    def is_valid(self, qs: FloatArray) -> npt.NDArray[np.bool_]:
+        offsets = qs[:, np.newaxis, :] - self.ball_centers[np.newaxis]
+        outside_balls = np.all(np.sum(offsets**2, axis=-1) > self.ball_radii**2, axis=1)
+        inside_box = np.all(
+            (qs[:, np.newaxis] >= self.boxes[:, 0]) & (qs[:, np.newaxis] <= self.boxes[:, 1]),
+            axis=-1,
+        )
+        return np.asarray(outside_balls & ~np.any(inside_box, axis=1))
+
+    def segment_valid(self, q0: FloatArray, q1: FloatArray) -> bool:
+        return CountingSegmentChecker(self, EDGE_RESOLUTION).segment_valid(q0, q1)
+
+
+def _sample_queries(
+    prefix: str,
+    space: ConfigurationSpace,
+    checker: CollisionChecker,
+    count: int,
+    rng: np.random.Generator,
+) -> list[MotionQuery]:
+    """Random valid start/goal pairs whose straight line collides."""
+    queries: list[MotionQuery] = []
+    segments = CountingSegmentChecker(checker, EDGE_RESOLUTION)
+    while len(queries) < count:
+        candidates = space.sample_uniform(rng, 64)
+        valid = candidates[checker.is_valid(candidates)]
+        for start, goal in zip(valid[0::2], valid[1::2], strict=False):
+            if len(queries) < count and not segments.segment_valid(start, goal):
+                queries.append(MotionQuery(f"{prefix}-{len(queries)}", start, goal, space, checker))
+    return queries
+
+
+def planar_arm_queries(count: int, seed: int) -> list[MotionQuery]:
+    """A 7-link planar arm (reach 1) among eight discs."""
+    rng = np.random.default_rng(seed)
+    bearings = np.linspace(0.0, 2 * np.pi, 8, endpoint=False) + 0.3
+    distances = np.array([0.45, 0.8, 0.55, 0.9, 0.5, 0.75, 0.6, 0.85])
+    centers = np.stack([distances * np.cos(bearings), distances * np.sin(bearings)], axis=1)
+    world = PlanarArmWorld(np.full(7, 1.0 / 7), centers, np.full(8, 0.12))
+    space = ConfigurationSpace(np.r_[-np.pi, np.full(6, -2.6)], np.r_[np.pi, np.full(6, 2.6)])
+    return _sample_queries("arm", space, world, count, rng)
+
+
+def joint_space_obstacle_queries(count: int, seed: int) -> list[MotionQuery]:
+    """Seven joints in [-pi, pi] among eight balls and ten slabs (boxes bounding two joints)."""
+    rng = np.random.default_rng(seed)
+    dimension, slab_count = 7, 10
+    space = ConfigurationSpace(np.full(dimension, -np.pi), np.full(dimension, np.pi))
+    lower = np.tile(space.lower, (slab_count, 1))
+    upper = np.tile(space.upper, (slab_count, 1))
+    for slab in range(slab_count):
+        joints = rng.choice(dimension, size=2, replace=False)
+        lower[slab, joints] = rng.uniform(-np.pi, np.pi - 1.0, size=2)
+        upper[slab, joints] = lower[slab, joints] + rng.uniform(1.0, 2.0, size=2)
+    world = JointSpaceObstacleWorld(
+        rng.uniform(-2.0, 2.0, size=(8, dimension)),
+        rng.uniform(2.0, 2.8, size=8),
+        np.stack([lower, upper], axis=1),
+    )
+    return _sample_queries("joints", space, world, count, rng)
+
+
+QUERY_SETS: dict[str, Callable[[int, int], list[MotionQuery]]] = {
+    "planar_arm": planar_arm_queries,
+    "joint_space_obstacles": joint_space_obstacle_queries,
+}
+"""Query-set name -> (count, seed) -> queries. The kitchen's set will be added here."""
+
+
+@dataclass(frozen=True)
+class Run:
+    """One planner on one query: plan plus smoothing."""
+
+    solved: bool
+    cpu_s: float
+    wall_s: float
+    path_length: float
+    collision_checks: int
+
+
+def _verified(path: FloatArray | None, query: MotionQuery) -> bool:
+    if path is None or not (np.allclose(path[0], query.start) and np.allclose(path[-1], query.goal)):
+        return False
+    return bool(np.all(query.checker.is_valid(densify_path(path, EDGE_RESOLUTION))))
+
+
+def run_ours(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
+    """Our RRT-Connect, then our shortcut."""
+    cpu, wall = time.process_time(), time.perf_counter()
+    planned = plan_rrt_connect(
+        query.start,
+        query.goal,
+        query.space,
+        query.checker,
+        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION),
+        seed=seed,
+        time_budget_s=time_budget_s,
+    )
+    path, checks = planned.path, planned.collision_checks
+    if path is not None:
+        smoothed = shortcut_path(
+            path, query.checker, ShortcutHyperparameters(edge_resolution=EDGE_RESOLUTION), seed=seed
+        )
+        path, checks = smoothed.path, checks + smoothed.collision_checks
+    cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+    length = path_length(path) if path is not None else float("nan")
+    return Run(_verified(path, query), cpu, wall, length, checks)
+
+
+def run_ompl(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
+    """OMPL's RRTConnect through SimpleSetup, then simplifySolution()."""
+    from ompl import base as ob
+    from ompl import geometric as og
+
+    dimension = query.space.dimension
+    state_space = ob.RealVectorStateSpace(dimension)
+    bounds = ob.RealVectorBounds(dimension)
+    for joint in range(dimension):
+        bounds.setLow(joint, float(query.space.lower[joint]))
+        bounds.setHigh(joint, float(query.space.upper[joint]))
+    state_space.setBounds(bounds)
+    setup = og.SimpleSetup(state_space)
+    checks = 0
+
+    def is_state_valid(state: object) -> bool:
+        nonlocal checks
+        checks += 1
+        q = np.array([state[joint] for joint in range(dimension)])  # type: ignore[index]
+        return bool(query.checker.is_valid(q[np.newaxis])[0])
+
+    setup.setStateValidityChecker(is_state_valid)
+    information = setup.getSpaceInformation()
+    information.setStateValidityCheckingResolution(EDGE_RESOLUTION / state_space.getMaximumExtent())
+    setup.setPlanner(og.RRTConnect(information))
+    start, goal = state_space.allocState(), state_space.allocState()
+    for joint in range(dimension):
+        start[joint], goal[joint] = float(query.start[joint]), float(query.goal[joint])
+    setup.setStartAndGoalStates(start, goal)
+    setup.setup()
+
+    cpu, wall = time.process_time(), time.perf_counter()
+    setup.solve(time_budget_s)
+    path: FloatArray | None = None
+    if setup.haveExactSolutionPath():
+        setup.simplifySolution()
+        solution = setup.getSolutionPath()
+        path = np.array(
+            [[solution.getState(i)[j] for j in range(dimension)] for i in range(solution.getStateCount())]
+        )
+    cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+    length = path_length(path) if path is not None else float("nan")
+    return Run(_verified(path, query), cpu, wall, length, checks)
+
+
+RUNNERS: dict[str, Callable[[MotionQuery, int, float], Run]] = {
+    "ours rrt_connect+shortcut": run_ours,
+    "ompl RRTConnect+simplify": run_ompl,
+}
+
+
+@dataclass(frozen=True)
+class Summary:
+    """Medians over queries of one planner (times and lengths over solved queries)."""
+
+    planner: str
+    success_rate: float
+    median_cpu_s: float
+    median_wall_s: float
+    median_path_length: float
+    checks_per_second: float
+
+
+def summarise(planner: str, runs: Sequence[Run]) -> Summary:
+    solved = [run for run in runs if run.solved] or list(runs)
+    return Summary(
+        planner=planner,
+        success_rate=sum(run.solved for run in runs) / len(runs),
+        median_cpu_s=statistics.median(run.cpu_s for run in solved),
+        median_wall_s=statistics.median(run.wall_s for run in solved),
+        median_path_length=statistics.median(run.path_length for run in solved),
+        checks_per_second=sum(r.collision_checks for r in runs) / sum(r.wall_s for r in runs),
+    )
+
+
+def format_table(summaries: Sequence[Summary]) -> str:
+    header = (
+        f"{'planner':<28}{'success':>9}{'cpu med s':>11}{'wall med s':>12}{'length med':>12}{'checks/s':>12}"
+    )
+    rows = [
+        f"{s.planner:<28}{s.success_rate:>9.0%}{s.median_cpu_s:>11.4f}{s.median_wall_s:>12.4f}"
+        f"{s.median_path_length:>12.3f}{s.checks_per_second:>12.0f}"
+        for s in summaries
+    ]
+    return "\n".join([header, "-" * len(header), *rows])
+
+
+def format_ratios(ours: Summary, theirs: Summary) -> str:
+    return (
+        f"ours/OMPL: success {ours.success_rate / max(theirs.success_rate, 1e-9):.2f}x, "
+        f"median cpu {ours.median_cpu_s / theirs.median_cpu_s:.2f}x, "
+        f"median wall {ours.median_wall_s / theirs.median_wall_s:.2f}x, "
+        f"median path length {ours.median_path_length / theirs.median_path_length:.2f}x, "
+        f"checks/s {ours.checks_per_second / theirs.checks_per_second:.2f}x"
+    )
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--query-set", choices=sorted(QUERY_SETS), default="planar_arm")
+    parser.add_argument("--queries", type=int, default=20)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--time-budget", type=float, default=10.0, help="seconds per query")
+    args = parser.parse_args(argv)
+
+    from ompl import util as ou
+
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    ou.RNG.setSeed(args.seed + 1)  # OMPL: one process-wide seed, set before any planner
+    queries = QUERY_SETS[args.query_set](args.queries, args.seed)
+    runs: dict[str, list[Run]] = {name: [] for name in RUNNERS}
+    for index, query in enumerate(queries):
+        for name, runner in RUNNERS.items():
+            runs[name].append(runner(query, args.seed + index, args.time_budget))
+    summaries = [summarise(name, planner_runs) for name, planner_runs in runs.items()]
+    print(
+        f"{len(queries)} {args.query_set} queries, resolution {EDGE_RESOLUTION} rad, "
+        f"budget {args.time_budget} s, seed {args.seed}"
+    )
+    print(format_table(summaries))
+    print(format_ratios(summaries[0], summaries[1]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

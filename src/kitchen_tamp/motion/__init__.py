@@ -1,0 +1,69 @@
+"""Joint-space motion planning over a batched collision-checker interface.
+
+Knows nothing of PyBullet: planners see joint bounds (`ConfigurationSpace`)
+and a `CollisionChecker`. Sampling-based planners (`plan_rrt`,
+`plan_rrt_connect`, by name in `MOTION_PLANNERS`) return a `PlanningResult`;
+smoothing (`shortcut_path`) is its own step; `check_path_densely` re-checks
+any path. Trajectory optimisation with Drake is imported on demand from
+`trajectory_program` (build) and `trajectory_solver` (solve, reconstruct,
+`optimize_trajectory`), so sampling-based planning does not load Drake.
+"""
+
+from kitchen_tamp.motion.collision_checker import (
+    CollisionChecker,
+    JointConfiguration,
+    JointConfigurations,
+    ValidityMask,
+)
+from kitchen_tamp.motion.configuration_space import ConfigurationSpace, InvalidMotionQueryError
+from kitchen_tamp.motion.joint_path import JointPath, densify_path, path_length, resample_path
+from kitchen_tamp.motion.path_verification import PathCheck, check_path_densely
+from kitchen_tamp.motion.planners import (
+    MOTION_PLANNERS,
+    MotionPlanner,
+    UnknownPlannerError,
+    planner_named,
+)
+from kitchen_tamp.motion.planning_result import MotionPlanningError, PlanningResult, PlanStatus
+from kitchen_tamp.motion.rrt import RrtHyperparameters, plan_rrt
+from kitchen_tamp.motion.rrt_connect import RrtConnectHyperparameters, plan_rrt_connect
+from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
+from kitchen_tamp.motion.shortcut import (
+    ShortcutHyperparameters,
+    SmoothingResult,
+    cut_corners,
+    prune_waypoints,
+    shortcut_path,
+)
+
+__all__ = [
+    "MOTION_PLANNERS",
+    "CollisionChecker",
+    "ConfigurationSpace",
+    "CountingSegmentChecker",
+    "InvalidMotionQueryError",
+    "JointConfiguration",
+    "JointConfigurations",
+    "JointPath",
+    "MotionPlanner",
+    "MotionPlanningError",
+    "PathCheck",
+    "PlanStatus",
+    "PlanningResult",
+    "RrtConnectHyperparameters",
+    "RrtHyperparameters",
+    "ShortcutHyperparameters",
+    "SmoothingResult",
+    "UnknownPlannerError",
+    "ValidityMask",
+    "check_path_densely",
+    "cut_corners",
+    "densify_path",
+    "path_length",
+    "plan_rrt",
+    "plan_rrt_connect",
+    "planner_named",
+    "prune_waypoints",
+    "resample_path",
+    "shortcut_path",
+]
