@@ -114,15 +114,44 @@ class Task:
             and not state & self.goal_neg
         )
 
+    def _successor_index(self) -> tuple[int, dict[int, tuple[GroundAction, ...]], tuple[GroundAction, ...]]:
+        """Actions keyed by their least common precondition atom, built once.
+
+        A state then only looks at the actions whose key atom it contains,
+        instead of testing every action.
+        """
+        index = self.__dict__.get("_successor_index_cache")
+        if index is None:
+            uses = [0] * len(self.atoms)
+            for action in self.actions:
+                for atom in action.pre_ids:
+                    uses[atom] += 1
+            keyed: dict[int, list[GroundAction]] = {}
+            unconditional: list[GroundAction] = []
+            for action in self.actions:
+                if action.pre_ids:
+                    key = min(action.pre_ids, key=lambda atom: (uses[atom], atom))
+                    keyed.setdefault(key, []).append(action)
+                else:
+                    unconditional.append(action)
+            index = (mask_of(keyed), {k: tuple(v) for k, v in keyed.items()}, tuple(unconditional))
+            object.__setattr__(self, "_successor_index_cache", index)
+        return index
+
     def applicable_actions(self, state: State) -> Iterator[GroundAction]:
-        for action in self.actions:
-            if state & action.pre == action.pre and not state & action.pre_neg:
+        """The actions applicable in ``state``, in a fixed order for a given state."""
+        key_mask, keyed, unconditional = self._successor_index()
+        for action in unconditional:
+            if not state & action.pre_neg:
                 yield action
+        for atom in bits(state & key_mask):
+            for action in keyed[atom]:
+                if state & action.pre == action.pre and not state & action.pre_neg:
+                    yield action
 
     def successors(self, state: State) -> Iterator[tuple[GroundAction, State]]:
-        for action in self.actions:
-            if state & action.pre == action.pre and not state & action.pre_neg:
-                yield action, (state & ~action.delete) | action.add
+        for action in self.applicable_actions(state):
+            yield action, (state & ~action.delete) | action.add
 
     def state_atoms(self, state: State) -> frozenset[Atom]:
         """The fluent atoms true in ``state``."""
