@@ -9,16 +9,21 @@ the offending name in the file text.
 from __future__ import annotations
 
 import re
+import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
+from typing import TypeVar
 
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
 from pddl.core import Domain, Problem
 from pddl.parser.domain import DomainParser
 from pddl.parser.problem import ProblemParser
 
 from kitchen_tamp.planning.errors import PlanningInputError
+
+T = TypeVar("T")
 
 PDDL_DIR = Path(__file__).resolve().parents[3] / "pddl"
 """The repository's ``pddl/`` folder, where bare problem names are also looked up."""
@@ -108,25 +113,27 @@ def _problem_parser() -> ProblemParser:
     return ProblemParser()
 
 
+def _parse(path: Path, what: str, parser: Callable[[str], T]) -> tuple[T, PddlSource]:
+    text = _read(path, what)
+    limit = getattr(sys, "tracebacklimit", None)
+    try:
+        parsed = parser(text)
+    except Exception as error:  # lark's syntax errors and the pddl package's own checks
+        raise _syntax_error(error, path, what) from None
+    finally:
+        # The pddl package zeroes sys.tracebacklimit while parsing and leaves it so on errors.
+        if limit is None:
+            sys.__dict__.pop("tracebacklimit", None)
+        else:
+            sys.tracebacklimit = limit
+    return parsed, PddlSource(path, text)
+
+
 def parse_domain(path: Path) -> tuple[Domain, PddlSource]:
     """Parse a domain file; a syntax error names file, line and column."""
-    text = _read(path, "domain")
-    try:
-        domain = _domain_parser()(text)
-    except UnexpectedInput as error:
-        raise _syntax_error(error, path, "domain") from None
-    except Exception as error:  # the pddl package raises assorted errors on bad input
-        raise _syntax_error(error, path, "domain") from None
-    return domain, PddlSource(path, text)
+    return _parse(path, "domain", _domain_parser())
 
 
 def parse_problem(path: Path) -> tuple[Problem, PddlSource]:
     """Parse a problem file; a syntax error names file, line and column."""
-    text = _read(path, "problem")
-    try:
-        problem = _problem_parser()(text)
-    except UnexpectedInput as error:
-        raise _syntax_error(error, path, "problem") from None
-    except Exception as error:  # the pddl package raises assorted errors on bad input
-        raise _syntax_error(error, path, "problem") from None
-    return problem, PddlSource(path, text)
+    return _parse(path, "problem", _problem_parser())
