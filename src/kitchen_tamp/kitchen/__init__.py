@@ -1,0 +1,55 @@
+"""What the kitchen domain's symbols mean in the simulated kitchen.
+
+Build the scene for a problem (``build_kitchen_for_task``), read its symbolic
+state back (``abstract_state``, Ψ), and turn each grounded action into motion
+targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
+"""
+
+from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
+from kitchen_tamp.kitchen.errors import (
+    InitialStateMismatchError,
+    KitchenError,
+    SkillFailure,
+    UnknownActionError,
+    UnknownObjectError,
+    UnsupportedInitialStateError,
+)
+from kitchen_tamp.kitchen.grasps import Grasp
+from kitchen_tamp.kitchen.kitchen_map import KITCHEN_MAP, KitchenMap
+from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
+from kitchen_tamp.kitchen.parameters import DEFAULT_PARAMETERS, SkillParameters
+from kitchen_tamp.kitchen.placements import Placement
+from kitchen_tamp.kitchen.regions import SupportRegion
+from kitchen_tamp.kitchen.skills import SKILLS, sample_action_targets, sample_targets
+from kitchen_tamp.kitchen.targets import Segment, SkillTargets, enter_segment, set_waypoint
+
+__all__ = [
+    "DEFAULT_PARAMETERS",
+    "KITCHEN_MAP",
+    "RESTING_GAP",
+    "SKILLS",
+    "Grasp",
+    "InitialStateMismatchError",
+    "KitchenError",
+    "KitchenMap",
+    "KitchenScene",
+    "Placement",
+    "Segment",
+    "SkillFailure",
+    "SkillParameters",
+    "SkillTargets",
+    "SupportRegion",
+    "UnknownActionError",
+    "UnknownObjectError",
+    "UnsupportedInitialStateError",
+    "abstract_state",
+    "build_kitchen",
+    "build_kitchen_for_task",
+    "check_initial_state",
+    "enter_segment",
+    "load_kitchen_problem",
+    "sample_action_targets",
+    "sample_targets",
+    "set_waypoint",
+]

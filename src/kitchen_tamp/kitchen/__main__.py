@@ -1,0 +1,87 @@
+"""``python -m kitchen_tamp.kitchen show``: render the kitchen for a problem, headless.
+
+Exit codes: 0 picture written, 1 a skill found no targets or the problem has no
+plan, 2 bad input (unreadable problem, unknown object, unsupported or
+mismatching :init), 3 internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from kitchen_tamp.kitchen.errors import (
+    InitialStateMismatchError,
+    SkillFailure,
+    UnknownActionError,
+    UnknownObjectError,
+    UnsupportedInitialStateError,
+)
+from kitchen_tamp.kitchen.kitchen_map import MODELS_DIR
+from kitchen_tamp.kitchen.layout import build_kitchen_for_task
+from kitchen_tamp.kitchen.show import render_scene, render_skill_frames
+from kitchen_tamp.planning import PlanningInputError, load_task, plan
+from kitchen_tamp.world import tile, write_png
+
+DEFAULT_PROBLEM = MODELS_DIR.parent / "pddl" / "problem.pddl"
+
+
+def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog="python -m kitchen_tamp.kitchen", description=__doc__.splitlines()[0]
+    )
+    commands = parser.add_subparsers(dest="command", required=True)
+    show = commands.add_parser("show", help="render the kitchen scene for a problem")
+    show.add_argument("--problem", type=Path, default=DEFAULT_PROBLEM, help="PDDL problem file")
+    show.add_argument("--domain", type=Path, default=None, help="domain file (default: beside the problem)")
+    show.add_argument("--out", type=Path, default=Path("out/scene.png"), help="PNG to write")
+    show.add_argument("--skills", action="store_true", help="also render the arm at each plan step's targets")
+    show.add_argument("--seed", type=int, default=0, help="seed of the skills' sampling")
+    show.add_argument("--gui", action="store_true", help="open the PyBullet window (needs a display)")
+    return parser.parse_args(argv)
+
+
+def show(arguments: argparse.Namespace) -> int:
+    """Write the scene picture (and with ``--skills`` a sheet of skill frames beside it)."""
+    task = load_task(arguments.problem, arguments.domain)
+    with build_kitchen_for_task(task, gui=arguments.gui) as kitchen:
+        path = write_png(render_scene(kitchen), arguments.out)
+        print(f"wrote {path}")
+        if arguments.skills:
+            result = plan(task, "bfs")
+            if result.plan is None:
+                print(f"error: {arguments.problem} has no plan", file=sys.stderr)
+                return 1
+            frames = render_skill_frames(kitchen, list(result.plan), arguments.seed)
+            sheet = tile([f.image for f in frames], columns=4)
+            path = write_png(sheet, arguments.out.with_name(f"{arguments.out.stem}_skills.png"))
+            print(f"wrote {path}: " + " ".join(f.action for f in frames))
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    arguments = parse_arguments(argv)
+    try:
+        return show(arguments)
+    except (
+        PlanningInputError,
+        UnknownObjectError,
+        UnknownActionError,
+        UnsupportedInitialStateError,
+        InitialStateMismatchError,
+        OSError,
+    ) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    except SkillFailure as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 1
+    except Exception as error:  # the CLI's last line of defence: one line, exit code 3
+        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

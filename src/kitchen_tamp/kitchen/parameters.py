@@ -1,0 +1,48 @@
+"""Hyper-parameters of the kitchen skills (distances and budgets, never joint angles)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class SkillParameters:
+    """How the skills sample and move; all lengths in metres, angles in radians."""
+
+    pregrasp_distance: float = 0.09
+    """The hand stops this far back along the approach before going straight in."""
+    lift_height: float = 0.10
+    """A picked box is lifted at least this high; more to clear a drawer's walls."""
+    wall_clearance: float = 0.03
+    """Extra height above a tray's walls for a box lifted out of it or lowered in."""
+    waypoint_step: float = 0.01
+    """Spacing of the Cartesian waypoints of approach, lift, pull and retreat."""
+    max_joint_step: float = 0.2
+    """Largest joint change between two Cartesian waypoints (else IK changed branch)."""
+    finger_clearance: float = 0.01
+    """A box fits the gripper if it is this much narrower than the fingers' full opening."""
+    finger_pad_half_width: float = 0.012
+    """Half the fingers' extent across the closing direction: grasps keep it on the object."""
+    grasp_depth: tuple[float, float] = (0.012, 0.03)
+    """How far past a box face the tool point (between the finger pads) goes."""
+    keep_down_probability: float = 0.5
+    """Chance that a placement keeps down the box face that was down when it was picked."""
+    hand_above_probability: float = 0.4
+    """Chance that a placement puts down the face the hand approached, so the hand is above
+    the box (any face otherwise)."""
+    ik_solutions: int = 4
+    """IK solutions of one target pose tried for being collision-free before the next sample."""
+    attempts: int = 40
+    """Samples a skill tries before it gives up."""
+
+    def __post_init__(self) -> None:
+        if min(self.pregrasp_distance, self.lift_height, self.waypoint_step, self.max_joint_step) <= 0:
+            raise ValueError(f"skill distances must be positive: {self}")
+        probabilities = (self.keep_down_probability, self.hand_above_probability)
+        if min(probabilities) < 0.0 or sum(probabilities) > 1.0 or self.attempts < 1:
+            raise ValueError(f"invalid skill parameters: {self}")
+        if not 0.0 < self.grasp_depth[0] <= self.grasp_depth[1]:
+            raise ValueError(f"grasp depth range must be increasing and positive: {self.grasp_depth}")
+
+
+DEFAULT_PARAMETERS = SkillParameters()

@@ -1,0 +1,63 @@
+"""The simulated world: the only package that talks to PyBullet.
+
+A ``Scene`` owns one physics client and its bodies (looked up by name); a
+``Robot`` gives an arm's configuration, gripper and forward kinematics;
+``InverseKinematics`` solves for tool poses with seeded restarts; a
+``CollisionChecker`` answers batch validity queries for motion planners;
+``render`` takes headless pictures.
+"""
+
+from kitchen_tamp.world.attachment import Attachment
+from kitchen_tamp.world.bodies import BASE_LINK, Body, BoxShape, JointInfo
+from kitchen_tamp.world.camera import CameraView, Image, render, tile, write_png
+from kitchen_tamp.world.collision import (
+    AllowedContact,
+    BoolArray,
+    CollisionChecker,
+    make_collision_checker,
+)
+from kitchen_tamp.world.errors import SceneClosedError, UnknownNameError, WorldError
+from kitchen_tamp.world.kinematics import IkOptions, InverseKinematics, straight_line
+from kitchen_tamp.world.robot import PANDA, ArmDescription, Robot
+from kitchen_tamp.world.scene import Scene, SceneState
+from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike, rotation_about_axis
+
+__all__ = [
+    "BASE_LINK",
+    "PANDA",
+    "AllowedContact",
+    "ArmDescription",
+    "Attachment",
+    "Body",
+    "BoolArray",
+    "BoxShape",
+    "CameraView",
+    "CollisionChecker",
+    "FloatArray",
+    "IkOptions",
+    "Image",
+    "InverseKinematics",
+    "JointInfo",
+    "Pose",
+    "Robot",
+    "Scene",
+    "SceneClosedError",
+    "SceneState",
+    "UnknownNameError",
+    "VectorLike",
+    "WorldError",
+    "make_collision_checker",
+    "panda_urdf_path",
+    "render",
+    "rotation_about_axis",
+    "straight_line",
+    "tile",
+    "write_png",
+]
+
+
+def panda_urdf_path() -> str:
+    """Path of the Franka Panda URDF shipped with ``pybullet_data``."""
+    import pybullet_data
+
+    return f"{pybullet_data.getDataPath()}/franka_panda/panda.urdf"
