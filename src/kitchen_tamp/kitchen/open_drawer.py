@@ -11,7 +11,7 @@ from kitchen_tamp.kitchen.errors import SkillFailure
 from kitchen_tamp.kitchen.grasps import sample_handle_grasp
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
-from kitchen_tamp.kitchen.straight_moves import hold_still, straight_approach, straight_move
+from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
 from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray, Pose
 
@@ -101,17 +101,12 @@ def _segments_for_grasp(
     parameters: SkillParameters,
 ) -> tuple[Segment, ...] | None:
     """Approach, grip, pull, release and retreat for one handle grasp, or None."""
-    approach = world_from_tool.rotation[:, 2]
-    q_grasp = kitchen.collision_free_ik(world_from_tool, problem.handle_checker, rng, parameters.ik_solutions)
-    if q_grasp is None:
-        return None
-    approach_path = straight_approach(
-        kitchen, q_grasp, world_from_tool, approach, parameters.pregrasp_distance, parameters
+    reached = reach_along_tool_axis(
+        kitchen, world_from_tool, problem.handle_checker, problem.free_checker, rng, parameters
     )
-    if approach_path is None or not problem.free_checker.is_valid(approach_path[0])[0]:
+    if reached is None:
         return None
-    if not problem.handle_checker.is_valid(approach_path).all():
-        return None
+    q_grasp, approach_path = reached
     distance = problem.goal - problem.start
     pull = straight_move(kitchen, q_grasp, world_from_tool, distance * problem.pull_direction, parameters)
     if pull is None:
@@ -122,7 +117,8 @@ def _segments_for_grasp(
         return None
     world_from_pulled = world_from_tool.translated(distance * problem.pull_direction)
     retreat = straight_move(
-        kitchen, pull[-1], world_from_pulled, -parameters.pregrasp_distance * approach, parameters
+        kitchen, pull[-1], world_from_pulled, -parameters.pregrasp_distance * world_from_tool.rotation[:, 2],
+        parameters,
     )
     if retreat is None or not problem.released_checker.is_valid(retreat).all():
         return None

@@ -11,7 +11,7 @@ from kitchen_tamp.kitchen.grasps import Grasp, sample_box_grasp
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
 from kitchen_tamp.kitchen.regions import box_corners
-from kitchen_tamp.kitchen.straight_moves import hold_still, straight_approach, straight_move
+from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
 from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray, Pose
 
@@ -50,19 +50,12 @@ def _segments_for_grasp(
 ) -> tuple[Segment, ...] | None:
     """Approach, close and lift for one grasp, or None if any of them is infeasible."""
     world_from_tool = problem.world_from_box @ grasp.object_from_tool
-    approach = world_from_tool.rotation[:, 2]
-    q_grasp = kitchen.collision_free_ik(
-        world_from_tool, problem.approach_checker, rng, parameters.ik_solutions
+    reached = reach_along_tool_axis(
+        kitchen, world_from_tool, problem.approach_checker, problem.free_checker, rng, parameters
     )
-    if q_grasp is None:
+    if reached is None:
         return None
-    approach_path = straight_approach(
-        kitchen, q_grasp, world_from_tool, approach, parameters.pregrasp_distance, parameters
-    )
-    if approach_path is None or not problem.free_checker.is_valid(approach_path[0])[0]:
-        return None
-    if not problem.approach_checker.is_valid(approach_path).all():
-        return None
+    q_grasp, approach_path = reached
     lift_path = straight_move(kitchen, q_grasp, world_from_tool, problem.lift * UP, parameters)
     if lift_path is None:
         return None

@@ -6,7 +6,7 @@ import numpy as np
 
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
-from kitchen_tamp.world import FloatArray, Pose, VectorLike, straight_line
+from kitchen_tamp.world import CollisionChecker, FloatArray, Pose, VectorLike, straight_line
 
 
 def straight_move(
@@ -37,6 +37,35 @@ def straight_approach(
         kitchen, q_target, world_from_tool_target, -distance * np.asarray(approach), parameters
     )
     return None if back is None else np.asarray(back[::-1])
+
+
+def reach_along_tool_axis(
+    kitchen: KitchenScene,
+    world_from_tool: Pose,
+    contact_checker: CollisionChecker,
+    free_checker: CollisionChecker,
+    rng: np.random.Generator,
+    parameters: SkillParameters,
+) -> tuple[FloatArray, FloatArray] | None:
+    """IK for a grasp pose and the straight approach into it along the tool's z axis.
+
+    The approach starts ``pregrasp_distance`` back, at a configuration free under
+    ``free_checker`` (no contact allowed); every waypoint must pass
+    ``contact_checker``, which allows the fingers to touch what they grasp.
+    Returns (grasp configuration, approach waypoints) or None.
+    """
+    q_grasp = kitchen.collision_free_ik(world_from_tool, contact_checker, rng, parameters.ik_solutions)
+    if q_grasp is None:
+        return None
+    approach_path = straight_approach(
+        kitchen, q_grasp, world_from_tool, world_from_tool.rotation[:, 2], parameters.pregrasp_distance,
+        parameters,
+    )
+    if approach_path is None or not free_checker.is_valid(approach_path[0])[0]:
+        return None
+    if not contact_checker.is_valid(approach_path).all():
+        return None
+    return q_grasp, approach_path
 
 
 def hold_still(q: FloatArray, widths: tuple[float, float]) -> tuple[FloatArray, FloatArray]:
