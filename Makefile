@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml requirements.txt requirements-dev.txt
 	touch $(STAMP)
 
 demo: install
-	$(BIN)/python pddl/activity_planning.py problem_hard.pddl --planner all
+	$(BIN)/python final_project.py rrt
 
 test: install
 	$(BIN)/python -m pytest -q
@@ -29,6 +29,7 @@ lint: install
 bench: install
 	$(BIN)/python benchmarks/symbolic.py
 	$(BIN)/python benchmarks/motion.py
+	$(BIN)/python benchmarks/kitchen_runs.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache

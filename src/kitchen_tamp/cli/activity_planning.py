@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
-import tempfile
 import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.cli import ExitCode
 from kitchen_tamp.planning import (
     SEARCH_DESCRIPTIONS,
@@ -57,18 +56,6 @@ def _planners(requested: Sequence[str] | None) -> list[str]:
             if expanded not in names:
                 names.append(expanded)
     return names
-
-
-def _write_atomically(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
 
 
 def _result_json(task: Task, result: SearchResult) -> dict[str, Any]:
@@ -125,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
             _print_result(result)
     last = results[-1]
     if args.plan_out is not None and last.plan is not None:
-        _write_atomically(args.plan_out, plan_text(last.plan))
+        write_atomically(args.plan_out, plan_text(last.plan))
     if args.json:
         print(json.dumps({
             "problem": task.name,

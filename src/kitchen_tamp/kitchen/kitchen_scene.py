@@ -139,10 +139,23 @@ class KitchenScene:
         """Open the fingers fully."""
         self.robot.set_gripper_width(self.robot.max_gripper_width)
 
+    # -- intended contact ------------------------------------------------------------------------------
+    def finger_contact(self, box: str) -> AllowedContact:
+        """The fingers touching ``box``: intended while they close on it or let go of it."""
+        return AllowedContact(box, robot_links=self.robot.finger_links)
+
+    def handle_contact(self, openable: str) -> AllowedContact:
+        """The gripper touching ``openable``'s handle: intended while it grips and pulls."""
+        handle = self.map.openables[openable].handle_link
+        return AllowedContact(self.kitchen.name, handle, self.robot.gripper_links)
+
     # -- checking ------------------------------------------------------------------------------------
-    def collision_checker(self, allowed: Iterable[AllowedContact] = ()) -> CollisionChecker:
-        """A checker of the scene as it is now (held box attached, drawers where they are)."""
-        return make_collision_checker(self.scene, self.robot, allowed)
+    def collision_checker(
+        self, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
+    ) -> CollisionChecker:
+        """A checker of the scene as it is now (held box attached, drawers where they are);
+        with a ``margin`` (m), configurations closer than that to contact count as colliding."""
+        return make_collision_checker(self.scene, self.robot, allowed, margin)
 
     def collision_free_ik(
         self,

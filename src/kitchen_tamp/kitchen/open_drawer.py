@@ -37,9 +37,11 @@ class OpenProblem:
     q_now: FloatArray
     open_width: float
     free_checker: CollisionChecker
+    clear_checker: CollisionChecker
     handle_checker: CollisionChecker
     released_checker: CollisionChecker
     strict_released_checker: CollisionChecker
+    handle_contact: AllowedContact
 
 
 def pull_direction(kitchen: KitchenScene, openable: str) -> FloatArray:
@@ -77,19 +79,18 @@ def handle_geometry(
 
 
 def _checkers(
-    kitchen: KitchenScene, openable: str, goal: float
-) -> tuple[CollisionChecker, CollisionChecker, CollisionChecker, CollisionChecker]:
-    """(free, gripper-on-handle, released-after-pull, strict-after-pull) checkers."""
-    robot = kitchen.robot
-    handle = AllowedContact(
-        kitchen.kitchen.name, kitchen.map.openables[openable].handle_link, robot.gripper_links
-    )
+    kitchen: KitchenScene, openable: str, goal: float, clearance: float
+) -> tuple[CollisionChecker, CollisionChecker, CollisionChecker, CollisionChecker, CollisionChecker]:
+    """(free, free with ``clearance``, gripper-on-handle, released-after-pull, clear-after-pull) checkers."""
+    handle = kitchen.handle_contact(openable)
     with kitchen.scene.preserved():
         kitchen.set_gripper_open()
         free = kitchen.collision_checker()
+        clear = kitchen.collision_checker(margin=clearance)
         on_handle = kitchen.collision_checker([handle])
         kitchen.set_opening(openable, goal)
-        return free, on_handle, kitchen.collision_checker([handle]), kitchen.collision_checker()
+        released = kitchen.collision_checker([handle])
+        return free, clear, on_handle, released, kitchen.collision_checker(margin=clearance)
 
 
 def _segments_for_grasp(
@@ -102,7 +103,7 @@ def _segments_for_grasp(
 ) -> tuple[Segment, ...] | None:
     """Approach, grip, pull, release and retreat for one handle grasp, or None."""
     reached = reach_along_tool_axis(
-        kitchen, world_from_tool, problem.handle_checker, problem.free_checker, rng, parameters
+        kitchen, world_from_tool, problem.handle_checker, problem.clear_checker, rng, parameters
     )
     if reached is None:
         return None
@@ -126,14 +127,17 @@ def _segments_for_grasp(
         return None
     grip_qs, grip_widths = hold_still(q_grasp, (problem.open_width, width))
     release_qs, release_widths = hold_still(pull[-1], (width, problem.open_width))
+    touch = (problem.handle_contact,)
+    open_width = problem.open_width
     return (
-        Segment("approach", approach_path, np.full(len(approach_path), problem.open_width)),
-        Segment("grip", grip_qs, grip_widths),
+        Segment("approach", approach_path, np.full(len(approach_path), open_width), allowed_contacts=touch),
+        Segment("grip", grip_qs, grip_widths, allowed_contacts=touch),
         Segment(
-            "pull", pull, np.full(len(pull), width), openable=problem.openable, drawer_values=drawer_values
+            "pull", pull, np.full(len(pull), width), openable=problem.openable, drawer_values=drawer_values,
+            allowed_contacts=touch,
         ),
-        Segment("release", release_qs, release_widths),
-        Segment("retreat", retreat, np.full(len(retreat), problem.open_width)),
+        Segment("release", release_qs, release_widths, allowed_contacts=touch),
+        Segment("retreat", retreat, np.full(len(retreat), open_width), allowed_contacts=touch),
     )
 
 
@@ -154,7 +158,9 @@ def sample_open(
     direction = pull_direction(kitchen, openable)
     handle = handle_geometry(kitchen, openable, direction, parameters)
     goal = kitchen.opening_limits(openable)[1]
-    free, on_handle, released, strict_released = _checkers(kitchen, openable, goal)
+    free, clear, on_handle, released, strict_released = _checkers(
+        kitchen, openable, goal, parameters.free_space_clearance
+    )
     problem = OpenProblem(
         openable=openable,
         joint=kitchen.map.openables[openable].joint,
@@ -164,9 +170,11 @@ def sample_open(
         q_now=kitchen.arm_configuration(),
         open_width=kitchen.robot.max_gripper_width,
         free_checker=free,
+        clear_checker=clear,
         handle_checker=on_handle,
         released_checker=released,
         strict_released_checker=strict_released,
+        handle_contact=kitchen.handle_contact(openable),
     )
     for attempt in range(1, parameters.attempts + 1):
         world_from_tool, width = sample_handle_grasp(

@@ -30,6 +30,10 @@ class SkillParameters:
     hand_above_probability: float = 0.4
     """Chance that a placement puts down the face the hand approached, so the hand is above
     the box (any face otherwise)."""
+    free_space_clearance: float = 0.005
+    """Where a skill hands over to free-space motion (before its approach, after its
+    retreat) the arm and what it carries keep at least this clearance, so a motion
+    planner keeping a small margin can start and end there."""
     ik_solutions: int = 4
     """IK solutions of one target pose tried for being collision-free before the next sample."""
     attempts: int = 40

@@ -28,7 +28,9 @@ class PickProblem:
     q_now: FloatArray
     open_width: float
     free_checker: CollisionChecker
+    clear_checker: CollisionChecker
     approach_checker: CollisionChecker
+    finger_contact: AllowedContact
 
 
 def _holding_checker(kitchen: KitchenScene, box: str, q_grasp: FloatArray, width: float) -> CollisionChecker:
@@ -51,7 +53,7 @@ def _segments_for_grasp(
     """Approach, close and lift for one grasp, or None if any of them is infeasible."""
     world_from_tool = problem.world_from_box @ grasp.object_from_tool
     reached = reach_along_tool_axis(
-        kitchen, world_from_tool, problem.approach_checker, problem.free_checker, rng, parameters
+        kitchen, world_from_tool, problem.approach_checker, problem.clear_checker, rng, parameters
     )
     if reached is None:
         return None
@@ -62,9 +64,12 @@ def _segments_for_grasp(
     if not _holding_checker(kitchen, problem.box, q_grasp, grasp.width).is_valid(lift_path).all():
         return None
     close_qs, close_widths = hold_still(q_grasp, (problem.open_width, grasp.width))
+    touch = (problem.finger_contact,)
     return (
-        Segment("approach", approach_path, np.full(len(approach_path), problem.open_width)),
-        Segment("close", close_qs, close_widths),
+        Segment(
+            "approach", approach_path, np.full(len(approach_path), problem.open_width), allowed_contacts=touch
+        ),
+        Segment("close", close_qs, close_widths, allowed_contacts=touch),
         Segment("lift", lift_path, np.full(len(lift_path), grasp.width), attached_box=problem.box),
     )
 
@@ -92,6 +97,7 @@ def sample_pick(
     size = kitchen.box_size(box)
     region = kitchen.region(support)
     bottom = float(np.min(box_corners(world_from_box, size)[:, 2]))
+    finger_contact = kitchen.finger_contact(box)
     with kitchen.scene.preserved():
         kitchen.set_gripper_open()
         problem = PickProblem(
@@ -101,7 +107,9 @@ def sample_pick(
             q_now=kitchen.arm_configuration(),
             open_width=robot.max_gripper_width,
             free_checker=kitchen.collision_checker(),
-            approach_checker=kitchen.collision_checker([AllowedContact(box, robot_links=robot.finger_links)]),
+            clear_checker=kitchen.collision_checker(margin=parameters.free_space_clearance),
+            approach_checker=kitchen.collision_checker([finger_contact]),
+            finger_contact=finger_contact,
         )
     max_width = robot.max_gripper_width - parameters.finger_clearance
     for attempt in range(1, parameters.attempts + 1):

@@ -14,7 +14,7 @@ from kitchen_tamp.kitchen.placements import Placement, down_face, face_along, sa
 from kitchen_tamp.kitchen.regions import SupportRegion
 from kitchen_tamp.kitchen.straight_moves import hold_still, straight_approach, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
-from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray, Pose
+from kitchen_tamp.world import CollisionChecker, FloatArray, Pose
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -30,19 +30,21 @@ class PlaceProblem:
     q_now: FloatArray
     open_width: float
     carrying_checker: CollisionChecker
+    clear_checker: CollisionChecker
 
 
 def _released_checkers(
-    kitchen: KitchenScene, box: str, q_place: FloatArray
+    kitchen: KitchenScene, box: str, q_place: FloatArray, clearance: float
 ) -> tuple[CollisionChecker, CollisionChecker]:
-    """(fingers may touch the box, strict) checkers of the scene after letting go at ``q_place``."""
+    """(fingers may touch the box, ``clearance`` kept from everything) checkers of the scene
+    after letting go at ``q_place``."""
     robot = kitchen.robot
     with kitchen.scene.preserved():
         robot.set_configuration(q_place)
         kitchen.release(box)
         kitchen.set_gripper_open()
-        touching = kitchen.collision_checker([AllowedContact(box, robot_links=robot.finger_links)])
-        return touching, kitchen.collision_checker()
+        touching = kitchen.collision_checker([kitchen.finger_contact(box)])
+        return touching, kitchen.collision_checker(margin=clearance)
 
 
 def _segments_for_placement(
@@ -67,19 +69,22 @@ def _segments_for_placement(
     descent = straight_approach(kitchen, q_place, world_from_tool, -UP, height, parameters)
     if descent is None or not problem.carrying_checker.is_valid(descent).all():
         return None
+    if not problem.clear_checker.is_valid(descent[0])[0]:
+        return None
     retreat = straight_move(
         kitchen, q_place, world_from_tool, -parameters.pregrasp_distance * approach, parameters
     )
     if retreat is None:
         return None
-    touching, strict = _released_checkers(kitchen, problem.box, q_place)
-    if not touching.is_valid(retreat).all() or not strict.is_valid(retreat[-1])[0]:
+    touching, clear = _released_checkers(kitchen, problem.box, q_place, parameters.free_space_clearance)
+    if not touching.is_valid(retreat).all() or not clear.is_valid(retreat[-1])[0]:
         return None
     release_qs, release_widths = hold_still(q_place, (problem.width, problem.open_width))
+    touch = (kitchen.finger_contact(problem.box),)
     return (
         Segment("descend", descent, np.full(len(descent), problem.width), attached_box=problem.box),
-        Segment("release", release_qs, release_widths),
-        Segment("retreat", retreat, np.full(len(retreat), problem.open_width)),
+        Segment("release", release_qs, release_widths, allowed_contacts=touch),
+        Segment("retreat", retreat, np.full(len(retreat), problem.open_width), allowed_contacts=touch),
     )
 
 
@@ -118,6 +123,7 @@ def sample_place(
         q_now=kitchen.arm_configuration(),
         open_width=robot.max_gripper_width,
         carrying_checker=kitchen.collision_checker(),
+        clear_checker=kitchen.collision_checker(margin=parameters.free_space_clearance),
     )
     hand_above = face_along(box_from_tool.rotation[:, 2])
     preferred = (

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.world import CollisionChecker, FloatArray
+from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray
 
 
 @dataclass(frozen=True, eq=False)
@@ -26,6 +26,7 @@ class Segment:
     attached_box: str | None = None
     openable: str | None = None
     drawer_values: FloatArray | None = None
+    allowed_contacts: tuple[AllowedContact, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.configurations)

@@ -1,0 +1,288 @@
+"""``final_project.py``: plan the kitchen task symbolically, refine every action into Panda
+motion, replay it headless, verify it and write report.json, trajectory.json, replay.gif
+and joints.png; ``replay RUN_DIR`` re-verifies and re-renders a saved run."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+import traceback
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.execute import (
+    FRAME_SECONDS,
+    REPORT_FILE,
+    TRAJECTORY_FILE,
+    RunReport,
+    SavedRun,
+    TrajectoryFileError,
+    build_timeline,
+    plot_joints,
+    read_trajectory,
+    render_replay,
+    verify_trajectory,
+    write_gif,
+    write_trajectory,
+)
+from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
+from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.planning import PlanningInputError, Task, load_task, plan
+from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
+from kitchen_tamp.refinement import (
+    DEFAULT_SAMPLES_PER_STEP,
+    MotionBackend,
+    RefinementFailure,
+    SamplingMotionBackend,
+    StepRecord,
+    refine_plan,
+)
+
+SYMBOLIC_PLANNER = "bfs"
+"""Search that gives the symbolic plan: breadth-first, so the plan is shortest."""
+SYMBOLIC_TIME_BUDGET_S = 60.0
+GIF_FILE = "replay.gif"
+JOINTS_FILE = "joints.png"
+RRT_VARIANTS = {"connect": "rrt_connect", "basic": "rrt"}
+
+
+class UsageError(Exception):
+    """A command line that cannot run as asked (exit 2)."""
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be non-negative, got {value}")
+    return value
+
+
+def _positive(text: str) -> int:
+    value = _seed(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError("must be at least 1")
+    return value
+
+
+def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
+    parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
+    parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
+    parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="final_project.py",
+        description="Kitchen task-and-motion planning for a Franka Panda: symbolic plan, skills, "
+                    "motion planning per step, headless replay, verification.")
+    modes = parser.add_subparsers(dest="mode", required=True, metavar="MODE")
+    helps = {
+        "rrt": "solve each step with a joint-space RRT (RRT-Connect by default) and shortcutting",
+        "optimizes": "solve each step with Drake trajectory optimisation",
+    }
+    for mode, text in helps.items():
+        sub = modes.add_parser(mode, help=text, description=text)
+        sub.add_argument("--problem", default=str(PDDL_DIR / "problem.pddl"),
+                         help="problem file; a bare name is also looked up in pddl/ (default: problem.pddl)")
+        sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
+        sub.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
+        sub.add_argument("--samples-per-step", type=_positive, default=DEFAULT_SAMPLES_PER_STEP,
+                         metavar="N", help="target samples an action may try (default %(default)s)")
+        if mode == "rrt":
+            sub.add_argument("--rrt", choices=sorted(RRT_VARIANTS), default="connect",
+                             help="RRT-Connect (default) or the single-tree goal-biased RRT")
+        _add_viewing_options(sub)
+    replay = modes.add_parser("replay", help="re-verify and re-render a saved run without planning")
+    replay.add_argument("run_dir", type=Path, metavar="RUN_DIR", help="folder with trajectory.json")
+    _add_viewing_options(replay)
+    return parser
+
+
+def _say(text: str) -> None:
+    print(text, flush=True)
+
+
+def _check_display(args: argparse.Namespace) -> None:
+    if args.gui and sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+        raise UsageError("--gui needs a display, and DISPLAY is not set (run without --gui: it is headless)")
+
+
+def _motion_backend(args: argparse.Namespace) -> MotionBackend:
+    if args.mode == "optimizes":
+        raise UsageError("the optimizes mode (Drake trajectory optimisation) is not available yet; use rrt")
+    return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
+
+
+def _progress(total: int) -> Callable[[StepRecord], None]:
+    def show(record: StepRecord) -> None:
+        seconds = sum(record.seconds.values())
+        head = f"[{record.index + 1}/{total}] {record.action}"
+        if record.solved:
+            _say(f"{head}: {record.planner}, {record.waypoints} waypoints "
+                 f"({record.motion.get('waypoints')} planned), {seconds:.2f} s")
+        else:
+            _say(f"{head}: FAILED after {record.target_samples} samples, {seconds:.2f} s")
+    return show
+
+
+def _wait_for_enter(index: int, action: str) -> None:
+    input(f"step {index + 1}: {action}  (press Enter)")
+
+
+def _play_in_window(kitchen: KitchenScene, trajectory: KitchenTrajectory, step: bool) -> None:
+    """Play the run at nominal speed in the GUI scene (waiting for Enter per action if asked)."""
+    timeline = build_timeline(trajectory)
+    times = np.arange(0.0, timeline.duration, 1.0 / 30.0)
+    current = -1
+    for _, index in timeline.play(kitchen, times):
+        if step and index != current:
+            _wait_for_enter(index, timeline.actions[index])
+        current = index
+        time.sleep(1.0 / 30.0)
+
+
+def verify_and_render(
+    task: Task,
+    run: SavedRun,
+    out_dir: Path,
+    report: RunReport,
+    args: argparse.Namespace,
+    report_name: str = REPORT_FILE,
+) -> int:
+    """Verify ``run`` in a fresh kitchen, plot and render it, write the report; the exit code."""
+    clock = time.perf_counter()
+    trajectory = run.trajectory
+    wait = _wait_for_enter if args.step and not args.gui else None
+    with build_kitchen_for_task(task, gui=args.gui) as fresh:
+        initial = fresh.scene.save_state()
+        verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
+        if args.gui:
+            fresh.scene.restore_state(initial)
+            _play_in_window(fresh, trajectory, args.step)
+    report.verification = verification.report_data()
+    if not verification.verified:
+        report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
+    report.timing["verification_s"] = time.perf_counter() - clock
+    clock = time.perf_counter()
+    timeline = build_timeline(trajectory)
+    title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
+    report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE).name
+    report.outputs["gif"] = None
+    if not args.no_video:
+        with build_kitchen_for_task(task) as kitchen:
+            images = render_replay(kitchen, timeline)
+        report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
+        _say(f"rendered {len(images)} frames of the replay")
+    report.timing["rendering_s"] = time.perf_counter() - clock
+    return _finish(report, out_dir, report_name)
+
+
+def _finish(report: RunReport, out_dir: Path, report_name: str = REPORT_FILE) -> int:
+    total = report.timing.get("started")
+    if isinstance(total, float):
+        report.timing["total_s"] = time.perf_counter() - total
+        del report.timing["started"]
+    path = report.write(out_dir / report_name)
+    verification = report.verification or {}
+    if report.solved:
+        goals = ", ".join(verification.get("goal_atoms", {}))  # type: ignore[arg-type]
+        clearance = float(verification.get("min_clearance_m", 0.0))  # type: ignore[arg-type]
+        _say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free "
+             f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; report {path}")
+        return int(ExitCode.SOLVED)
+    failure = report.failure or {}
+    _say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; report {path}")
+    return int(ExitCode.NO_PLAN)
+
+
+def run_plan(args: argparse.Namespace, started: float) -> int:
+    """``rrt`` / ``optimizes``: plan, refine, write the trajectory, verify and render."""
+    _check_display(args)
+    backend = _motion_backend(args)
+    problem = resolve_problem_path(args.problem).resolve()
+    domain = Path(args.domain).resolve() if args.domain else problem.parent / "domain.pddl"
+    task = load_task(problem, domain)
+    out_dir: Path = args.out or Path("out") / f"{problem.stem}-{args.mode}-seed{args.seed}"
+    report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
+    report.timing["started"] = started
+    with build_kitchen_for_task(task) as kitchen:
+        report.timing["startup_s"] = time.perf_counter() - started
+        clock = time.perf_counter()
+        result = plan(task, SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
+        report.timing["symbolic_s"] = time.perf_counter() - clock
+        if result.plan is None:
+            report.fail("symbolic", f"no symbolic plan: {result.message}")
+            return _finish(report, out_dir)
+        report.plan = [action.text for action in result.plan]
+        _say(f"{problem.name}: {len(result.plan)}-action plan by {SYMBOLIC_PLANNER}; refining with "
+             f"{backend.name} (seed {args.seed})")
+        clock = time.perf_counter()
+        try:
+            refined = refine_plan(
+                kitchen, result.plan, backend, np.random.default_rng(args.seed), args.samples_per_step,
+                on_step=_progress(len(result.plan)),
+            )
+        except RefinementFailure as failure:
+            records = (*failure.completed, failure.record)
+            report.steps = [r.figures() for r in records]
+            _record_step_timing(report, records)
+            report.fail("refinement", str(failure), failure.record.index + 1, failure.record.action)
+            return _finish(report, out_dir)
+        report.timing["refinement_s"] = time.perf_counter() - clock
+    report.steps = [r.figures() for r in refined.records]
+    _record_step_timing(report, refined.records)
+    run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)
+    report.outputs["trajectory"] = write_trajectory(out_dir / TRAJECTORY_FILE, run).name
+    return verify_and_render(task, run, out_dir, report, args)
+
+
+def _record_step_timing(report: RunReport, records: Sequence[StepRecord]) -> None:
+    report.timing["skills_s"] = sum(r.seconds.get("skills_s", 0.0) for r in records)
+    report.timing["motion_s"] = sum(r.seconds.get("motion_s", 0.0) for r in records)
+    report.timing["steps"] = [
+        {"action": r.action, **{k: round(v, 4) for k, v in r.seconds.items()}} for r in records
+    ]
+
+
+def run_replay(args: argparse.Namespace, started: float) -> int:
+    """``replay RUN_DIR``: verify and render a saved trajectory again, without planning."""
+    _check_display(args)
+    run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
+    task = load_task(run.problem, run.domain)
+    out_dir: Path = args.out or args.run_dir
+    report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
+    report.plan = run.trajectory.plan
+    report.timing["started"] = started
+    _say(f"replaying {len(run.trajectory.steps)} actions of {args.run_dir} ({run.problem.name}, {run.mode}, "
+         f"seed {run.seed})")
+    report.outputs["trajectory"] = str(args.run_dir / TRAJECTORY_FILE)
+    return verify_and_render(task, run, out_dir, report, args, report_name="replay_report.json")
+
+
+def main(argv: Sequence[str] | None = None, started: float | None = None) -> int:
+    """Run the command line; returns the exit code (see ``ExitCode``)."""
+    started = time.perf_counter() if started is None else started
+    args = build_parser().parse_args(argv)
+    try:
+        if args.mode == "replay":
+            return run_replay(args, started)
+        return run_plan(args, started)
+    except (UsageError, PlanningInputError, KitchenError, TrajectoryFileError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return int(ExitCode.BAD_INPUT)
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return int(ExitCode.NO_PLAN)
+    except Exception as error:  # a bug: say so, with the traceback, and exit 3
+        traceback.print_exc()
+        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
+        return int(ExitCode.INTERNAL_ERROR)

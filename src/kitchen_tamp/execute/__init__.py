@@ -1,0 +1,34 @@
+"""Replaying a refined plan headless, verifying it independently of the planner, and
+writing what a run leaves behind: report.json, trajectory.json, replay.gif, joints.png."""
+
+from kitchen_tamp.execute.joint_plot import plot_joints
+from kitchen_tamp.execute.replay_video import FRAME_SECONDS, render_replay, write_gif
+from kitchen_tamp.execute.run_report import REPORT_FILE, RunReport
+from kitchen_tamp.execute.timeline import Timeline, build_timeline
+from kitchen_tamp.execute.trajectory_file import (
+    TRAJECTORY_FILE,
+    SavedRun,
+    TrajectoryFileError,
+    read_trajectory,
+    write_trajectory,
+)
+from kitchen_tamp.execute.verification import DEFAULT_RESOLUTION, Verification, verify_trajectory
+
+__all__ = [
+    "DEFAULT_RESOLUTION",
+    "FRAME_SECONDS",
+    "REPORT_FILE",
+    "TRAJECTORY_FILE",
+    "RunReport",
+    "SavedRun",
+    "Timeline",
+    "TrajectoryFileError",
+    "Verification",
+    "build_timeline",
+    "plot_joints",
+    "read_trajectory",
+    "render_replay",
+    "verify_trajectory",
+    "write_gif",
+    "write_trajectory",
+]

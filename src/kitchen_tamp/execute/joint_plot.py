@@ -1,0 +1,50 @@
+"""``joints.png``: joint angles over time with action boundaries marked."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+from kitchen_tamp.atomic_files import write_atomically
+from kitchen_tamp.execute.timeline import Timeline
+
+
+def plot_joints(timeline: Timeline, title: str, path: Path, show_velocities: bool = False) -> Path:
+    """Plot each arm joint's angle against time (and, if asked, its velocity below),
+    with a dashed line and the action's name at the start of every action."""
+    times, qs = timeline.joint_samples()
+    rows = 2 if show_velocities else 1
+    figure, axes = plt.subplots(rows, 1, figsize=(11, 3.6 * rows), sharex=True, squeeze=False)
+    angle_axis = axes[0][0]
+    for joint in range(qs.shape[1] if qs.ndim == 2 else 0):
+        angle_axis.plot(times, qs[:, joint], linewidth=1.2, label=f"joint {joint + 1}")
+    angle_axis.set_ylabel("angle (rad)")
+    angle_axis.set_title(title)
+    if show_velocities and len(times) > 1:
+        velocity_axis = axes[1][0]
+        dt = np.maximum(np.diff(times), 1e-9)
+        velocities = np.diff(qs, axis=0) / dt[:, None]
+        for joint in range(qs.shape[1]):
+            velocity_axis.step(times[:-1], velocities[:, joint], where="post", linewidth=1.0)
+        velocity_axis.set_ylabel("velocity (rad/s)")
+    for row in axes:
+        for start in timeline.step_starts:
+            row[0].axvline(float(start), color="0.5", linestyle="--", linewidth=0.8)
+    top = angle_axis.get_ylim()[1]
+    for start, action in zip(timeline.step_starts, timeline.actions, strict=True):
+        angle_axis.text(
+            float(start), top, " " + action, rotation=90, va="top", ha="left", fontsize=7, color="0.3"
+        )
+    axes[-1][0].set_xlabel("time (s) at nominal joint speed")
+    angle_axis.legend(loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=7)
+    figure.tight_layout()
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=100)
+    plt.close(figure)
+    return write_atomically(path, buffer.getvalue())

@@ -1,0 +1,68 @@
+"""``report.json``: what a run planned, what each step took, and what verification found.
+
+Everything outside ``timing`` is deterministic for a given problem, mode and
+seed, so two runs can be compared by their reports with ``timing`` removed.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from kitchen_tamp.atomic_files import write_atomically
+
+REPORT_FORMAT = "kitchen_tamp.report/1"
+REPORT_FILE = "report.json"
+
+
+@dataclass
+class RunReport:
+    """A report under construction; ``data()`` gives the JSON document."""
+
+    problem: Path
+    domain: Path
+    mode: str
+    motion_planner: str
+    seed: int
+    symbolic_planner: str = "bfs"
+    plan: list[str] | None = None
+    steps: list[dict[str, object]] = field(default_factory=list)
+    failure: dict[str, object] | None = None
+    verification: dict[str, object] | None = None
+    outputs: dict[str, str | None] = field(default_factory=dict)
+    timing: dict[str, object] = field(default_factory=dict)
+
+    @property
+    def solved(self) -> bool:
+        """Refined and verified."""
+        return self.failure is None and self.verification is not None and bool(self.verification["verified"])
+
+    def fail(self, stage: str, reason: str, step: int | None = None, action: str | None = None) -> None:
+        """Record why the run did not solve the problem (the first failure wins)."""
+        if self.failure is None:
+            self.failure = {"stage": stage, "step": step, "action": action, "reason": reason}
+
+    def data(self) -> dict[str, Any]:
+        return {
+            "format": REPORT_FORMAT,
+            "problem": self.problem.name,
+            "problem_path": str(self.problem),
+            "domain_path": str(self.domain),
+            "mode": self.mode,
+            "motion_planner": self.motion_planner,
+            "seed": self.seed,
+            "symbolic_planner": self.symbolic_planner,
+            "plan": self.plan,
+            "solved": self.solved,
+            "failure": self.failure,
+            "steps": self.steps,
+            "verification": self.verification,
+            "outputs": self.outputs,
+            "timing": {k: round(v, 4) if isinstance(v, float) else v for k, v in self.timing.items()},
+        }
+
+    def write(self, path: Path) -> Path:
+        """Write the report to ``path`` (normally ``RUN_DIR/report.json``) atomically."""
+        return write_atomically(path, json.dumps(self.data(), indent=2) + "\n")

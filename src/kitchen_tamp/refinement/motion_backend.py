@@ -1,0 +1,177 @@
+"""Motion back ends of the kitchen pipeline: how one free-space move is solved.
+
+A back end takes a start, a goal, a collision checker and the step's RNG and
+returns a ``MotionSolution``: the path (or None) with deterministic figures for
+the report and the seconds it took (reported under timing only).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from kitchen_tamp.motion import (
+    ConfigurationSpace,
+    RrtConnectHyperparameters,
+    RrtHyperparameters,
+    ShortcutHyperparameters,
+    check_path_densely,
+    path_length,
+    plan_rrt,
+    plan_rrt_connect,
+    shortcut_path,
+)
+from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
+from kitchen_tamp.motion.joint_path import JointPath
+
+Figure = float | int | str | None
+
+VERIFICATION_RESOLUTION = 0.005
+"""Joint-space spacing (rad) of the dense post-check every returned path must pass."""
+
+DETERMINISM_TIME_BUDGET_S = 600.0
+"""Wall-clock budget handed to planners and smoothing: far above what their iteration
+limits take, so results depend on the seed only, never on machine speed."""
+
+
+class BoundedCollisionChecker(CollisionChecker, Protocol):
+    """A collision checker that also knows the joint limits."""
+
+    @property
+    def lower(self) -> JointConfiguration: ...
+
+    @property
+    def upper(self) -> JointConfiguration: ...
+
+
+@dataclass(frozen=True, eq=False)
+class MotionSolution:
+    """The answer of a back end for one move."""
+
+    path: JointPath | None
+    status: str
+    attempts: int
+    figures: Mapping[str, Figure] = field(default_factory=dict)
+    seconds: float = 0.0
+
+    @property
+    def solved(self) -> bool:
+        """Whether a path was found and passed the dense post-check."""
+        return self.path is not None
+
+
+class MotionBackend(Protocol):
+    """Solves one free-space move; ``name`` goes into the report."""
+
+    @property
+    def name(self) -> str: ...
+
+    def solve(
+        self,
+        start: JointConfiguration,
+        goal: JointConfiguration,
+        checker: BoundedCollisionChecker,
+        strict_checker: CollisionChecker,
+        rng: np.random.Generator,
+    ) -> MotionSolution:
+        """A path from ``start`` to ``goal`` planned with ``checker`` (which may keep a
+        margin) and free under ``strict_checker`` at ``VERIFICATION_RESOLUTION``."""
+        ...
+
+
+@dataclass(frozen=True)
+class SamplingMotionBackend:
+    """RRT-Connect (or the single-tree RRT) followed by shortcut smoothing.
+
+    Each attempt uses a fresh seed drawn from the step's RNG; a path counts only
+    if, after smoothing, it is also collision-free at ``dense_resolution``
+    (planners check edges at 0.01 rad, which can graze obstacles in between).
+    """
+
+    planner: str = "rrt_connect"
+    attempts: int = 3
+    rrt: RrtHyperparameters = field(default_factory=RrtHyperparameters)
+    rrt_connect: RrtConnectHyperparameters = field(default_factory=RrtConnectHyperparameters)
+    shortcut: ShortcutHyperparameters = field(
+        default_factory=lambda: ShortcutHyperparameters(max_iterations=60)
+    )
+    dense_resolution: float = VERIFICATION_RESOLUTION
+
+    def __post_init__(self) -> None:
+        if self.planner not in ("rrt", "rrt_connect"):
+            raise ValueError(f"unknown sampling planner {self.planner!r}; choose rrt or rrt_connect")
+        if self.attempts < 1:
+            raise ValueError(f"attempts must be at least 1, got {self.attempts}")
+
+    @property
+    def name(self) -> str:
+        return self.planner
+
+    def solve(
+        self,
+        start: JointConfiguration,
+        goal: JointConfiguration,
+        checker: BoundedCollisionChecker,
+        strict_checker: CollisionChecker,
+        rng: np.random.Generator,
+    ) -> MotionSolution:
+        clock = time.perf_counter()
+        space = ConfigurationSpace(checker.lower, checker.upper)
+        totals = {"iterations": 0, "nodes": 0, "collision_checks": 0, "dense_check_failures": 0}
+        status = "not attempted"
+        for attempt in range(1, self.attempts + 1):
+            seed = int(rng.integers(2**31))
+            if self.planner == "rrt":
+                result = plan_rrt(
+                    start, goal, space, checker, self.rrt, seed=seed, time_budget_s=DETERMINISM_TIME_BUDGET_S
+                )
+            else:
+                result = plan_rrt_connect(
+                    start,
+                    goal,
+                    space,
+                    checker,
+                    self.rrt_connect,
+                    seed=seed,
+                    time_budget_s=DETERMINISM_TIME_BUDGET_S,
+                )
+            totals["iterations"] += result.iterations
+            totals["nodes"] += result.nodes
+            totals["collision_checks"] += result.collision_checks
+            status = result.status.value
+            if result.path is None:
+                continue
+            raw_length = path_length(result.path)
+            smoothed = shortcut_path(
+                result.path, checker, self.shortcut, seed=seed, time_budget_s=DETERMINISM_TIME_BUDGET_S
+            )
+            totals["collision_checks"] += smoothed.collision_checks
+            dense = check_path_densely(smoothed.path, strict_checker, self.dense_resolution)
+            totals["collision_checks"] += dense.configurations_checked
+            if not dense.collision_free:
+                totals["dense_check_failures"] += 1
+                status = "path grazes an obstacle between edge checks"
+                continue
+            path = _at_least_two_waypoints(smoothed.path, start, goal)
+            figures: dict[str, Figure] = {
+                "planner_seed": seed,
+                **totals,
+                "raw_path_length_rad": round(raw_length, 9),
+                "path_length_rad": round(path_length(path), 9),
+                "waypoints": len(path),
+            }
+            return MotionSolution(path, "solved", attempt, figures, time.perf_counter() - clock)
+        return MotionSolution(None, status, self.attempts, dict(totals), time.perf_counter() - clock)
+
+
+def _at_least_two_waypoints(
+    path: JointPath, start: JointConfiguration, goal: JointConfiguration
+) -> JointPath:
+    """A path a segment can hold: start and goal even when they coincide."""
+    if len(path) >= 2:
+        return np.asarray(path)
+    return np.stack([np.asarray(start, float), np.asarray(goal, float)])

@@ -1,0 +1,183 @@
+"""Refine a symbolic plan in the kitchen: each action's skill gives targets, a motion
+back end connects the arm to them, and the scene advances to the action's outcome.
+
+Refinement is greedy here: an action gets up to ``samples_per_step`` target
+samples (each with the back end's own attempts) and the first that connects is
+kept; earlier actions are never revisited.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, sample_action_targets
+from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
+from kitchen_tamp.planning import GroundAction
+from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
+
+DEFAULT_SAMPLES_PER_STEP = 4
+"""Target samples (grasp, placement or handle grip) an action may try before it fails."""
+
+PLANNING_MARGIN = 0.003
+"""Clearance (m) free-space moves keep while planned: paths are checked every 0.01 rad,
+and without slack a path can graze an obstacle between two checks."""
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """What refining one action took. ``figures`` are deterministic for a seed;
+    ``seconds`` are wall-clock and belong under a report's timing."""
+
+    index: int
+    action: str
+    planner: str
+    solved: bool
+    target_samples: int
+    skill_samples: int
+    motion_attempts: int
+    motion: Mapping[str, Figure]
+    waypoints: int
+    rejections: tuple[str, ...]
+    seconds: Mapping[str, float] = field(default_factory=dict)
+
+    def figures(self) -> dict[str, object]:
+        """The record as report data, without wall-clock figures."""
+        return {
+            "action": self.action,
+            "planner": self.planner,
+            "solved": self.solved,
+            "target_samples": self.target_samples,
+            "skill_samples": self.skill_samples,
+            "motion_attempts": self.motion_attempts,
+            "motion": dict(self.motion),
+            "waypoints": self.waypoints,
+            "rejections": list(self.rejections),
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class RefinedPlan:
+    """A refined plan and one record per action."""
+
+    trajectory: KitchenTrajectory
+    records: tuple[StepRecord, ...]
+
+
+class RefinementFailure(Exception):
+    """An action of the plan could not be refined within its budget."""
+
+    def __init__(self, record: StepRecord, completed: tuple[StepRecord, ...]) -> None:
+        reason = record.rejections[-1] if record.rejections else "no sample tried"
+        super().__init__(
+            f"step {record.index + 1} {record.action} could not be refined in "
+            f"{record.target_samples} target samples: {reason}"
+        )
+        self.record = record
+        self.completed = completed
+
+
+def refine_action(
+    kitchen: KitchenScene,
+    index: int,
+    action: GroundAction,
+    backend: MotionBackend,
+    rng: np.random.Generator,
+    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
+    planning_margin: float = PLANNING_MARGIN,
+) -> tuple[ActionTrajectory | None, StepRecord]:
+    """Sample targets for ``action`` and connect the arm to them; on success the scene
+    is left in the state after the action. Returns (trajectory or None, record)."""
+    rejections: list[str] = []
+    skill_samples = motion_attempts = 0
+    skills_s = motion_s = 0.0
+    motion: Mapping[str, Figure] = {}
+    for sample in range(1, samples_per_step + 1):
+        clock = time.perf_counter()
+        try:
+            targets = sample_action_targets(kitchen, action, rng)
+        except SkillFailure as failure:
+            skills_s += time.perf_counter() - clock
+            rejections.append(str(failure))
+            continue
+        skills_s += time.perf_counter() - clock
+        skill_samples += targets.samples_tried
+        start = kitchen.arm_configuration()
+        strict = targets.free_space_checker
+        with kitchen.scene.preserved():
+            kitchen.robot.set_gripper_width(targets.gripper_width)
+            checker = kitchen.collision_checker(margin=planning_margin)
+        margin = planning_margin
+        if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
+            checker, margin = strict, 0.0  # an end is closer than the margin: plan without slack
+        solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
+        motion_s += solution.seconds
+        motion_attempts += solution.attempts
+        motion = {**solution.figures, "planning_margin_m": margin}
+        if solution.path is None:
+            rejections.append(f"no {backend.name} path to the targets of sample {sample}: {solution.status}")
+            continue
+        move = Segment(
+            FREE_SPACE_SEGMENT,
+            solution.path,
+            np.full(len(solution.path), targets.gripper_width),
+            attached_box=targets.held_box,
+        )
+        trajectory = ActionTrajectory(action.text, (move, *targets.segments))
+        targets.apply(kitchen)
+        record = StepRecord(
+            index,
+            action.text,
+            backend.name,
+            True,
+            sample,
+            skill_samples,
+            motion_attempts,
+            motion,
+            trajectory.waypoint_count,
+            tuple(rejections),
+            {"skills_s": skills_s, "motion_s": motion_s},
+        )
+        return trajectory, record
+    record = StepRecord(
+        index,
+        action.text,
+        backend.name,
+        False,
+        samples_per_step,
+        skill_samples,
+        motion_attempts,
+        motion,
+        0,
+        tuple(rejections),
+        {"skills_s": skills_s, "motion_s": motion_s},
+    )
+    return None, record
+
+
+def refine_plan(
+    kitchen: KitchenScene,
+    actions: Sequence[GroundAction],
+    backend: MotionBackend,
+    rng: np.random.Generator,
+    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
+    on_step: Callable[[StepRecord], None] | None = None,
+) -> RefinedPlan:
+    """Refine ``actions`` in order from the scene as it is (greedy: no backtracking).
+
+    Raises ``RefinementFailure`` naming the first action that could not be refined.
+    """
+    steps: list[ActionTrajectory] = []
+    records: list[StepRecord] = []
+    for index, action in enumerate(actions):
+        trajectory, record = refine_action(kitchen, index, action, backend, rng, samples_per_step)
+        if on_step is not None:
+            on_step(record)
+        if trajectory is None:
+            raise RefinementFailure(record, tuple(records))
+        steps.append(trajectory)
+        records.append(record)
+    return RefinedPlan(KitchenTrajectory(tuple(steps)), tuple(records))

@@ -1,0 +1,175 @@
+"""final_project.py end to end on the kitchen problems, headless: verified runs, the files
+they leave, determinism, replay, and every exit code."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from kitchen_tamp.cli import final_project
+from kitchen_tamp.cli.final_project import main
+from kitchen_tamp.refinement import MotionSolution
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _report(run_dir: Path, name: str = "report.json") -> dict[str, Any]:
+    data: dict[str, Any] = json.loads((run_dir / name).read_text())
+    return data
+
+
+def _without_timing(report: dict[str, Any]) -> dict[str, Any]:
+    return {k: v for k, v in report.items() if k != "timing"}
+
+
+@pytest.fixture(scope="module")
+def hard_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """problem_hard.pddl with rrt, seed 1, with the GIF."""
+    out = tmp_path_factory.mktemp("hard")
+    assert main(["rrt", "--problem", "problem_hard.pddl", "--seed", "1", "--out", str(out)]) == 0
+    return out
+
+
+def test_hard_problem_is_solved_verified_and_leaves_every_file(hard_run: Path) -> None:
+    report = _report(hard_run)
+    assert report["solved"] is True and report["failure"] is None
+    assert report["plan"] is not None and len(report["plan"]) == 7
+    assert any(a.startswith("(placeIn") for a in report["plan"])  # the drawer is the temporary place
+    verification = report["verification"]
+    assert verification["collision_free"] is True
+    assert verification["goal_atoms"] == {"(boxOn spam stove)": True, "(boxOn sugar countertop)": True}
+    assert verification["resolution_rad"] <= 0.005
+    assert [s["action"] for s in report["steps"]] == report["plan"]
+    assert all(s["solved"] and s["planner"] == "rrt_connect" for s in report["steps"])
+    assert {
+        "startup_s",
+        "symbolic_s",
+        "skills_s",
+        "motion_s",
+        "verification_s",
+        "rendering_s",
+        "total_s",
+    } <= set(report["timing"])
+    import imageio.v3 as iio
+
+    frames = iio.imread(hard_run / "replay.gif", index=None)
+    assert len(frames) >= 20
+    assert not np.array_equal(frames[0], frames[-1])  # the scene changed
+    assert (hard_run / "joints.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_replay_reproduces_the_verification(hard_run: Path, tmp_path: Path) -> None:
+    assert main(["replay", str(hard_run), "--out", str(tmp_path), "--no-video"]) == 0
+    replayed = _report(tmp_path, "replay_report.json")
+    assert replayed["verification"] == _report(hard_run)["verification"]
+    assert replayed["solved"] is True
+
+
+def test_replay_of_a_tampered_trajectory_fails(hard_run: Path, tmp_path: Path) -> None:
+    data = json.loads((hard_run / "trajectory.json").read_text())
+    data["steps"] = data["steps"][:-1]  # the last placement never happens
+    (tmp_path / "trajectory.json").write_text(json.dumps(data))
+    assert main(["replay", str(tmp_path), "--no-video"]) == 1
+    assert (
+        _report(tmp_path, "replay_report.json")["verification"]["goal_atoms"]["(boxOn spam stove)"] is False
+    )
+
+
+def test_same_seed_gives_the_same_report_apart_from_timing(tmp_path: Path) -> None:
+    a, b = tmp_path / "a", tmp_path / "b"
+    for out in (a, b):
+        assert main(["rrt", "--seed", "2", "--out", str(out), "--no-video"]) == 0
+    assert _without_timing(_report(a)) == _without_timing(_report(b))
+    assert (a / "trajectory.json").read_text() == (b / "trajectory.json").read_text()
+    assert _report(a)["outputs"]["gif"] is None and not (a / "replay.gif").exists()
+
+
+def test_basic_rrt_solves_the_kitchen_problem(tmp_path: Path) -> None:
+    assert main(["rrt", "--rrt", "basic", "--out", str(tmp_path), "--no-video"]) == 0
+    report = _report(tmp_path)
+    assert report["motion_planner"] == "rrt" and report["verification"]["collision_free"] is True
+
+
+def test_default_output_folder_is_named_after_problem_mode_and_seed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(final_project, "_motion_backend", lambda args: _FailingBackend())
+    assert main(["rrt", "--seed", "4", "--no-video"]) == 1
+    assert (tmp_path / "out" / "problem-rrt-seed4" / "report.json").exists()
+
+
+class _FailingBackend:
+    name = "never"
+
+    def solve(self, *args: object) -> MotionSolution:
+        return MotionSolution(None, "refused", 1, {"iterations": 0})
+
+
+def test_a_step_that_cannot_be_refined_exits_1_and_the_report_names_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(final_project, "_motion_backend", lambda args: _FailingBackend())
+    assert main(["rrt", "--out", str(tmp_path), "--samples-per-step", "2"]) == 1
+    report = _report(tmp_path)
+    assert report["solved"] is False
+    assert report["failure"]["stage"] == "refinement"
+    assert report["failure"]["step"] == 1 and report["failure"]["action"] == "(open drawer)"
+    assert report["steps"][0]["target_samples"] == 2
+    assert "FAILED" in capsys.readouterr().out
+
+
+def test_no_symbolic_plan_exits_1(tmp_path: Path) -> None:
+    problem = tmp_path / "crowded.pddl"
+    text = (REPO / "pddl" / "problem.pddl").read_text()
+    goal = "(boxOn sugar countertop)\n    (boxIn spam drawer)"
+    assert goal in text
+    problem.write_text(
+        text.replace(goal, "(boxOn sugar stove)\n    (boxOn spam stove)")
+    )  # one box per surface
+    code = main(
+        [
+            "rrt",
+            "--problem",
+            str(problem),
+            "--domain",
+            str(REPO / "pddl" / "domain.pddl"),
+            "--out",
+            str(tmp_path / "run"),
+        ]
+    )
+    assert code == 1
+    assert _report(tmp_path / "run")["failure"]["stage"] == "symbolic"
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["rrt", "--problem", "no/such/file.pddl"],
+        ["optimizes"],
+        ["rrt", "--seed", "-1"],
+        ["rrt", "--rrt", "prm"],
+        ["replay", "no/such/run"],
+        ["frobnicate"],
+    ],
+)
+def test_bad_input_exits_2_with_one_line(argv: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    try:
+        code = main(argv)
+    except SystemExit as exit_:  # argparse's usage errors
+        code = int(exit_.code or 0)
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and err.strip()
+
+
+def test_gui_without_a_display_is_refused(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    assert main(["rrt", "--gui"]) == 2
+    assert "display" in capsys.readouterr().err
