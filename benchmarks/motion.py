@@ -7,19 +7,23 @@ re-checked densely before it counts as a success.
 
     .venv/bin/python benchmarks/motion.py                      # planar 7-link arm
     .venv/bin/python benchmarks/motion.py --query-set joint_space_obstacles
+    .venv/bin/python benchmarks/motion.py --query-set kitchen --checker drake
 
-A query set is a function (count, seed) -> list[MotionQuery] in QUERY_SETS;
-the kitchen's queries (start, goal, space, checker) plug in the same way.
+A query set is a function (count, seed) -> list[MotionQuery] in QUERY_SETS.
+The kitchen's queries are the free-space motions of the real task (see
+`kitchen_queries`), checked by PyBullet or by the Drake model of the same scene.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import statistics
 import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
@@ -146,11 +150,69 @@ def joint_space_obstacle_queries(count: int, seed: int) -> list[MotionQuery]:
     return _sample_queries("joints", space, world, count, rng)
 
 
+KITCHEN_PROBLEMS = tuple(
+    Path(__file__).resolve().parents[1] / "pddl" / f for f in ("problem.pddl", "problem_hard.pddl")
+)
+CHECKER_BACKENDS = ("pybullet", "drake")
+
+
+def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[MotionQuery]:
+    """One free-space query per action of the problem's BFS plan, until a skill fails to sample."""
+    from kitchen_tamp.kitchen import SkillFailure, load_kitchen_problem, sample_action_targets
+    from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+    from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+    from kitchen_tamp.planning.search.registry import plan
+    from kitchen_tamp.world import panda_urdf_path
+    from kitchen_tamp.world.scene_description import describe_collision_checker
+
+    task, kitchen = load_kitchen_problem(problem)
+    found = plan(task, "bfs")
+    if found.plan is None:
+        raise RuntimeError(f"{problem.name}: no symbolic plan ({found.status})")
+    paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
+    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
+    space = ConfigurationSpace(kitchen.robot.lower, kitchen.robot.upper)
+    rng = np.random.default_rng(seed)
+    queries: list[MotionQuery] = []
+    for step, action in enumerate(found.plan):
+        try:
+            targets = sample_action_targets(kitchen, action, rng)
+        except SkillFailure:
+            break
+        checker: CollisionChecker = targets.free_space_checker
+        if backend == "drake":
+            checker = DrakeCollisionChecker(describe_collision_checker(targets.free_space_checker, paths))
+        name = f"{problem.stem}-s{'.'.join(map(str, seed))}-{step}{targets.action_text}"
+        queries.append(
+            MotionQuery(name, kitchen.arm_configuration(), targets.goal_configuration, space, checker)
+        )
+        targets.apply(kitchen)
+    return queries
+
+
+def kitchen_queries(count: int, seed: int, backend: str = "pybullet") -> list[MotionQuery]:
+    """The kitchen task's free-space motions: the BFS plans of problem.pddl and
+    problem_hard.pddl are walked action by action, again and again with samples
+    seeded by (seed, walk, problem); each query goes from where the arm is to the
+    skill's sampled goal configuration, checked by the skill's free-space checker
+    or (``backend="drake"``) its Drake model."""
+    if backend not in CHECKER_BACKENDS:
+        raise ValueError(f"unknown checker backend {backend!r}; choose from {', '.join(CHECKER_BACKENDS)}")
+    queries: list[MotionQuery] = []
+    for walk in itertools.islice(itertools.count(), 100):
+        for index, problem in enumerate(KITCHEN_PROBLEMS):
+            queries += _kitchen_walk(problem, (seed, walk, index), backend)[: count - len(queries)]
+            if len(queries) == count:
+                return queries
+    raise RuntimeError(f"only {len(queries)} kitchen queries could be sampled")
+
+
 QUERY_SETS: dict[str, Callable[[int, int], list[MotionQuery]]] = {
     "planar_arm": planar_arm_queries,
     "joint_space_obstacles": joint_space_obstacle_queries,
+    "kitchen": kitchen_queries,
 }
-"""Query-set name -> (count, seed) -> queries. The kitchen's set will be added here."""
+"""Query-set name -> (count, seed) -> queries."""
 
 
 @dataclass(frozen=True)
@@ -296,20 +358,29 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--queries", type=int, default=20)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--time-budget", type=float, default=10.0, help="seconds per query")
+    parser.add_argument(
+        "--checker", choices=CHECKER_BACKENDS, default="pybullet", help="collision model of the kitchen set"
+    )
     args = parser.parse_args(argv)
+    if args.checker != "pybullet" and args.query_set != "kitchen":
+        parser.error("--checker applies to the kitchen query set only")
 
     from ompl import util as ou
 
     ou.setLogLevel(ou.LogLevel.LOG_NONE)
     ou.RNG.setSeed(args.seed + 1)  # OMPL: one process-wide seed, set before any planner
-    queries = QUERY_SETS[args.query_set](args.queries, args.seed)
+    if args.query_set == "kitchen":
+        queries = kitchen_queries(args.queries, args.seed, args.checker)
+    else:
+        queries = QUERY_SETS[args.query_set](args.queries, args.seed)
     runs: dict[str, list[Run]] = {name: [] for name in RUNNERS}
     for index, query in enumerate(queries):
         for name, runner in RUNNERS.items():
             runs[name].append(runner(query, args.seed + index, args.time_budget))
     summaries = [summarise(name, planner_runs) for name, planner_runs in runs.items()]
+    checker = f" ({args.checker} checker)" if args.query_set == "kitchen" else ""
     print(
-        f"{len(queries)} {args.query_set} queries, resolution {EDGE_RESOLUTION} rad, "
+        f"{len(queries)} {args.query_set}{checker} queries, resolution {EDGE_RESOLUTION} rad, "
         f"budget {args.time_budget} s, seed {args.seed}"
     )
     print(format_table(summaries))

@@ -20,6 +20,13 @@ from kitchen_tamp.world.errors import SceneClosedError, UnknownNameError, WorldE
 from kitchen_tamp.world.kinematics import IkOptions, InverseKinematics, straight_line
 from kitchen_tamp.world.robot import PANDA, ArmDescription, Robot
 from kitchen_tamp.world.scene import Scene, SceneState
+from kitchen_tamp.world.scene_description import (
+    AttachmentDescription,
+    BodyDescription,
+    SceneDescription,
+    describe_collision_checker,
+    describe_scene,
+)
 from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike, rotation_about_axis
 
 __all__ = [
@@ -28,7 +35,9 @@ __all__ = [
     "AllowedContact",
     "ArmDescription",
     "Attachment",
+    "AttachmentDescription",
     "Body",
+    "BodyDescription",
     "BoolArray",
     "BoxShape",
     "CameraView",
@@ -42,10 +51,13 @@ __all__ = [
     "Robot",
     "Scene",
     "SceneClosedError",
+    "SceneDescription",
     "SceneState",
     "UnknownNameError",
     "VectorLike",
     "WorldError",
+    "describe_collision_checker",
+    "describe_scene",
     "make_collision_checker",
     "panda_urdf_path",
     "render",

@@ -237,12 +237,14 @@ class CollisionChecker:
         boxes = [p.getAABB(uid, link, physicsClientId=self._client) for uid, link in rows]
         return np.fromiter(_flatten(_flatten(boxes)), dtype=float, count=6 * len(rows))
 
-    def _candidates(self, horizon: float, static_bounds: FloatArray) -> list[int]:
-        """Pairs whose bounds come within ``horizon``, the most overlapping first."""
+    def _candidates(self, horizon: float, static_bounds: FloatArray) -> list[tuple[int, float]]:
+        """(pair, gap between its bounds) for the pairs whose bounds come within ``horizon``,
+        the most overlapping first."""
         table = np.concatenate([self._bounds(self._moving_rows), static_bounds])
         gaps = (table.take(self._gap_minuends) - table.take(self._gap_subtrahends)).reshape(6, -1).max(axis=0)
         near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
-        return near[np.argsort(gaps[near], kind="stable")].tolist()  # type: ignore[no-any-return]
+        near = near[np.argsort(gaps[near], kind="stable")]
+        return list(zip(near.tolist(), gaps[near].tolist(), strict=True))
 
     # -- scene state ------------------------------------------------------------------------------
     def _read_state(self) -> tuple[RawBodyState, ...]:
@@ -306,7 +308,7 @@ class CollisionChecker:
     def _distances(self, horizon: float, static_bounds: FloatArray) -> Iterator[float]:
         """Signed distances (within ``horizon``) of the checked pairs at the current state."""
         client = self._client
-        for k in self._candidates(horizon, static_bounds):
+        for k, _ in self._candidates(horizon, static_bounds):
             uid_a, link_a, uid_b, link_b = self._pair_ids[k]
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
                 yield float(point[8])
@@ -315,7 +317,18 @@ class CollisionChecker:
         return any(d < self.margin for d in self._distances(max(self.margin, 0.0), static_bounds))
 
     def _clearance_here(self, static_bounds: FloatArray) -> float:
-        return min(self._distances(CLEARANCE_HORIZON, static_bounds), default=CLEARANCE_HORIZON)
+        """Smallest distance up to the horizon: pairs in order of their bounds' gap until the
+        gap alone rules a pair out. (Each pair is asked up to the full horizon: a smaller
+        threshold changes PyBullet's depth estimates of deep penetrations.)"""
+        horizon, client = CLEARANCE_HORIZON, self._client
+        best = horizon
+        for k, gap in self._candidates(horizon, static_bounds):
+            if gap > best + BOUNDS_SLACK:
+                break
+            uid_a, link_a, uid_b, link_b = self._pair_ids[k]
+            for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
+                best = min(best, float(point[8]))
+        return best
 
     # -- batches -----------------------------------------------------------------------------------
     def _check_rows(
@@ -389,7 +402,7 @@ class CollisionChecker:
         horizon, names = max(self.margin, 0.0), []
         with self._in_snapshot(only_arm_moves=True):
             static_bounds = self._place(np.asarray(q, dtype=float))
-            for k in self._candidates(horizon, static_bounds):
+            for k, _ in self._candidates(horizon, static_bounds):
                 uid_a, link_a, uid_b, link_b = self._pair_ids[k]
                 points = p.getClosestPoints(
                     uid_a, uid_b, horizon, link_a, link_b, physicsClientId=self._client

@@ -1,0 +1,151 @@
+"""PyBullet against Drake collision checking of the kitchen arm, on the same configurations.
+
+For the kitchen of ``pddl/problem.pddl`` with a free hand and holding the spam
+box (as the pick skill grasps it), both checkers answer the same uniformly
+random arm configurations: CPU time per configuration in one batch and per
+single-configuration call (how OMPL asks), collision checks per second, how
+often they agree, and how close to contact the disagreements are. The Drake
+model's distance queries (for trajectory optimisation) are timed too.
+
+    .venv/bin/python benchmarks/collision.py
+    .venv/bin/python benchmarks/collision.py --configurations 5000 --seed 1
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.world import CollisionChecker, panda_urdf_path
+from kitchen_tamp.world.scene_description import describe_collision_checker
+
+PROBLEM = Path(__file__).resolve().parents[1] / "pddl" / "problem.pddl"
+
+FloatArray = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+Validity = Callable[[FloatArray], BoolArray]
+
+
+def kitchen_urdf_paths(kitchen: KitchenScene) -> dict[str, Path | str]:
+    """Body name -> the URDF it was loaded from."""
+    boxes: dict[str, Path | str] = {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
+    return {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path(), **boxes}
+
+
+def drake_twin(kitchen: KitchenScene, checker: CollisionChecker) -> DrakeCollisionChecker:
+    """The Drake model of the scene ``checker`` captured, with its allowed contacts and margin."""
+    description = describe_collision_checker(checker, kitchen_urdf_paths(kitchen))
+    return DrakeCollisionChecker(description, margin=checker.margin)
+
+
+@dataclass(frozen=True)
+class Timing:
+    """One checker on one scene."""
+
+    scene: str
+    checker: str
+    batch_us: float
+    single_us: float
+    valid_fraction: float
+
+
+def cpu_us_per_configuration(validity: Validity, qs: FloatArray, batch: bool) -> tuple[float, BoolArray]:
+    """(CPU microseconds per configuration, validity), best of three runs."""
+    best, valid = np.inf, np.zeros(len(qs), dtype=bool)
+    for _ in range(3):
+        start = time.process_time()
+        valid = validity(qs) if batch else np.array([validity(q[np.newaxis])[0] for q in qs], dtype=bool)
+        best = min(best, time.process_time() - start)
+    return best / len(qs) * 1e6, valid
+
+
+def cpu_us_per_call(function: Callable[[FloatArray], object], qs: FloatArray) -> float:
+    start = time.process_time()
+    for q in qs:
+        function(q)
+    return (time.process_time() - start) / len(qs) * 1e6
+
+
+def compare(
+    scene: str, pybullet: CollisionChecker, drake: DrakeCollisionChecker, qs: FloatArray
+) -> list[str]:
+    """Timings of both checkers and a paragraph on their agreement."""
+    timings, verdicts = [], {}
+    for name, validity in (("pybullet", pybullet.is_valid), ("drake", drake.is_valid)):
+        batch_us, valid = cpu_us_per_configuration(validity, qs, batch=True)
+        single_us, _ = cpu_us_per_configuration(validity, qs[:500], batch=False)
+        timings.append(Timing(scene, name, batch_us, single_us, float(np.mean(valid))))
+        verdicts[name] = valid
+    differ = np.flatnonzero(verdicts["pybullet"] != verdicts["drake"])
+    clearance = pybullet.min_clearance(qs[differ]) * 1e3
+    distance = np.array([drake.min_distance(q) for q in qs[differ]]) * 1e3
+    lines = [format_row(t) for t in timings]
+    lines.append(
+        f"{'':<10}agreement {1 - len(differ) / len(qs):.2%} ({len(differ)} of {len(qs)} differ: "
+        f"{int(np.sum(verdicts['pybullet'][differ]))} valid only for PyBullet)"
+    )
+    if len(differ):
+        lines.append(
+            f"{'':<10}where they differ, PyBullet's clearance is {clearance.min():+.2f}.."
+            f"{clearance.max():+.2f} mm and Drake's distance {distance.min():+.2f}..{distance.max():+.2f} mm"
+        )
+    near = qs[:200]
+    lines.append(
+        f"{'':<10}drake min_distance {cpu_us_per_call(drake.min_distance, near):.0f} us, "
+        f"signed_distance {cpu_us_per_call(drake.signed_distance, near):.0f} us per call; "
+        f"pybullet min_clearance {cpu_us_per_call(lambda q: pybullet.min_clearance(q), near):.0f} us"
+    )
+    return lines
+
+
+HEADER = f"{'scene':<10}{'checker':<10}{'batch us/q':>12}{'single us/q':>13}{'checks/s':>11}{'valid':>8}"
+
+
+def format_row(t: Timing) -> str:
+    return (
+        f"{t.scene:<10}{t.checker:<10}{t.batch_us:>12.1f}{t.single_us:>13.1f}"
+        f"{1e6 / t.batch_us:>11.0f}{t.valid_fraction:>8.1%}"
+    )
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--configurations", type=int, default=2000)
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args(argv)
+
+    _, kitchen = load_kitchen_problem(PROBLEM)
+    with kitchen:
+        free = kitchen.collision_checker()
+        with kitchen.scene.preserved():
+            sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(args.seed)).apply(
+                kitchen
+            )
+            holding = kitchen.collision_checker()
+        start = time.perf_counter()
+        twins = {"free": drake_twin(kitchen, free), "holding": drake_twin(kitchen, holding)}
+        build_s = (time.perf_counter() - start) / 2
+        qs = np.random.default_rng(args.seed).uniform(free.lower, free.upper, size=(args.configurations, 7))
+        print(
+            f"{args.configurations} random arm configurations of the {PROBLEM.name} kitchen, "
+            f"seed {args.seed}; CPU time, best of 3; Drake model built in {build_s:.2f} s"
+        )
+        print(HEADER)
+        print("-" * len(HEADER))
+        for scene, checker in (("free", free), ("holding", holding)):
+            print("\n".join(compare(scene, checker, twins[scene], qs)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

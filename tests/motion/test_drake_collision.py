@@ -1,0 +1,159 @@
+"""The Drake collision model of the real kitchen answers like the PyBullet checker: same pairs,
+the same verdict except within millimetres of contact, and a signed distance whose gradient is
+the finite-difference one."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
+from kitchen_tamp.world import AllowedContact, CollisionChecker, Pose, make_collision_checker, panda_urdf_path
+from kitchen_tamp.world.scene_description import describe_collision_checker
+from tests.kitchen.conftest import REPO
+
+CONFIGURATIONS = 500
+NEAR_CONTACT = 0.003
+"""Disagreements are allowed only where PyBullet's clearance is this close (m) to zero."""
+
+
+@dataclass(frozen=True, eq=False)
+class CheckerPair:
+    pybullet: CollisionChecker
+    drake: DrakeCollisionChecker
+
+
+def drake_twin(kitchen: KitchenScene, checker: CollisionChecker) -> DrakeCollisionChecker:
+    paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
+    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
+    return DrakeCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)
+
+
+@pytest.fixture(scope="module")
+def kitchen() -> Iterator[KitchenScene]:
+    _, built = load_kitchen_problem(REPO / "pddl" / "problem.pddl")
+    with built:
+        yield built
+
+
+@pytest.fixture(scope="module")
+def free(kitchen: KitchenScene) -> CheckerPair:
+    checker = kitchen.collision_checker()
+    return CheckerPair(checker, drake_twin(kitchen, checker))
+
+
+@pytest.fixture(scope="module")
+def holding(kitchen: KitchenScene, free: CheckerPair) -> CheckerPair:
+    """The hand holds the spam box as the pick skill grasped it."""
+    with kitchen.scene.preserved():
+        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
+        assert kitchen.held_box() == "spam"
+        checker = kitchen.collision_checker()
+    return CheckerPair(checker, drake_twin(kitchen, checker))
+
+
+def countertop_configurations(kitchen: KitchenScene) -> tuple[np.ndarray, np.ndarray]:
+    """(free, colliding): IK for the tool 0.3 m above the countertop and inside the slab under it."""
+    low, high = kitchen.kitchen.aabb("countertop")
+    x, y = float((low[0] + high[0]) / 2.0), float((low[1] + high[1]) / 2.0)
+    down = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]])
+    rng = np.random.default_rng(0)
+    above = kitchen.ik.solve(Pose.from_rotation((x, y, float(high[2]) + 0.3), down), rng, [kitchen.home])
+    inside = kitchen.ik.solve(Pose.from_rotation((x, y, float(high[2]) - 0.03), down), rng, [kitchen.home])
+    assert above is not None and inside is not None
+    return above, inside
+
+
+@pytest.mark.parametrize("scene", ["free", "holding"])
+def test_agrees_with_pybullet_except_near_contact(request: pytest.FixtureRequest, scene: str) -> None:
+    pair: CheckerPair = request.getfixturevalue(scene)
+    rng = np.random.default_rng(1)
+    qs = rng.uniform(pair.pybullet.lower, pair.pybullet.upper, size=(CONFIGURATIONS, 7))
+    pybullet, drake = pair.pybullet.is_valid(qs), pair.drake.is_valid(qs)
+    assert 0.1 < pybullet.mean() < 0.95
+    disagreements = np.flatnonzero(pybullet != drake)
+    assert len(disagreements) <= 0.05 * CONFIGURATIONS
+    clearance = pair.pybullet.min_clearance(qs[disagreements])
+    distance = [pair.drake.min_distance(q) for q in qs[disagreements]]
+    report = [
+        (int(i), bool(pybullet[i]), round(float(c), 5), round(d, 5))
+        for i, c, d in zip(disagreements, clearance, distance, strict=True)
+    ]
+    assert np.all(np.abs(clearance) < NEAR_CONTACT), report
+    assert np.all(np.abs(distance) < NEAR_CONTACT), report
+
+
+@pytest.mark.parametrize("scene", ["free", "holding"])
+def test_checks_the_same_pairs_as_pybullet(request: pytest.FixtureRequest, scene: str) -> None:
+    pair: CheckerPair = request.getfixturevalue(scene)
+    pybullet = {  # white box: the PyBullet checker's pair table
+        frozenset((f"{a.name}/{a.link_name(i)}", f"{b.name}/{b.link_name(j)}"))
+        for a, i, b, j in pair.pybullet._pairs
+    }
+    assert pair.drake.checked_pairs == pybullet
+
+
+def test_allowed_contacts_are_left_out(kitchen: KitchenScene) -> None:
+    handle = AllowedContact("kitchen", "drawer_handle", kitchen.robot.gripper_links)
+    checker = make_collision_checker(kitchen.scene, kitchen.robot, [handle])
+    drake = drake_twin(kitchen, checker)
+    assert frozenset(("panda/panda_hand", "kitchen/drawer_handle")) not in drake.checked_pairs
+    assert frozenset(("panda/panda_link7", "kitchen/drawer_handle")) in drake.checked_pairs
+
+
+def test_hand_in_the_countertop_collides_in_both(kitchen: KitchenScene, free: CheckerPair) -> None:
+    above, inside = countertop_configurations(kitchen)
+    for checker in (free.pybullet, free.drake):
+        assert checker.is_valid(np.stack([above, inside])).tolist() == [True, False]
+        assert checker.segment_valid(above, above + 0.01)
+        assert not checker.segment_valid(above, inside)
+    assert free.drake.min_distance(inside) < 0.0 < free.drake.min_distance(above)
+    assert not free.drake.is_valid(free.drake.upper + 0.1)[0]
+
+
+def test_margin_means_minimum_distance(kitchen: KitchenScene, free: CheckerPair) -> None:
+    checker = make_collision_checker(kitchen.scene, kitchen.robot, margin=0.02)
+    drake = drake_twin(kitchen, checker)
+    qs = np.random.default_rng(2).uniform(drake.lower, drake.upper, size=(40, 7))
+    distances = np.array([free.drake.min_distance(q) for q in qs])
+    assert drake.is_valid(qs).tolist() == (distances >= 0.02).tolist()
+
+
+def test_signed_distance_gradient_is_the_finite_difference(free: CheckerPair, holding: CheckerPair) -> None:
+    rng = np.random.default_rng(3)
+    checked = 0
+    for drake in (free.drake, holding.drake):
+        for q in rng.uniform(drake.lower, drake.upper, size=(30, 7)):
+            value, gradient = drake.signed_distance(q)
+            if not 0.005 < value < drake.distance_horizon - 0.01:
+                continue
+            assert value == drake.min_distance(q)
+            step = 1e-6
+            finite = [
+                (drake.signed_distance(q + step * e)[0] - drake.signed_distance(q - step * e)[0]) / (2 * step)
+                for e in np.eye(7)
+            ]
+            assert np.allclose(gradient, finite, rtol=1e-4, atol=1e-6)
+            checked += 1
+    assert checked >= 10
+
+
+def test_signed_distance_plugs_into_trajectory_optimisation(free: CheckerPair) -> None:
+    from pydrake.autodiffutils import AutoDiffXd, ExtractGradient, ExtractValue
+
+    q = free.drake.lower * 0.3 + free.drake.upper * 0.7
+    value, gradient = free.drake.signed_distance(q)
+    constraint = SignedDistanceConstraint(free.drake.signed_distance)
+    variables = np.array([AutoDiffXd(v, np.eye(7)[i]) for i, v in enumerate(q)], dtype=object)
+    (evaluated,) = constraint(variables)
+    extracted: Any = (ExtractValue(np.array([evaluated])), ExtractGradient(np.array([evaluated])))
+    assert float(np.ravel(extracted[0])[0]) == value
+    assert np.allclose(np.ravel(extracted[1]), gradient)
