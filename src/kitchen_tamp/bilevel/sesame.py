@@ -1,0 +1,210 @@
+"""SeSamE (search, then sample): abstract plans shortest first, each refined with backtracking.
+
+The one loop behind three planners:
+
+* :func:`sesame` — abstract plans from the problem's plan generator, best first,
+  each refined with backtracking, until one is refined or a budget (plans,
+  samples, time) runs out;
+* :func:`backtracking_refinement` — SeSamE with ``max_plans=1``: one abstract
+  plan, up to ``samples_per_step`` samples per step before stepping back;
+* :func:`greedy_refinement` — SeSamE with ``max_plans=1, samples_per_step=1``:
+  one sample per step, so the first failure ends the run.
+
+Backtracking: step ``i`` is sampled from the state the previous step reached.
+A success moves on to step ``i + 1``; a step that has failed ``samples_per_step``
+times since it was last entered gives up and step ``i - 1`` is sampled again
+(one backtrack), with its own count carrying on. When the first step gives up,
+the abstract plan is abandoned and the next one is tried.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Generic, TypeVar
+
+import numpy as np
+
+from kitchen_tamp.bilevel.abstract_plans import shortest_first_plans
+from kitchen_tamp.bilevel.abstraction import AbstractPlan, AbstractPlanGenerator
+from kitchen_tamp.bilevel.problem import BilevelProblem
+from kitchen_tamp.bilevel.results import (
+    BilevelResult,
+    Outcome,
+    PlanAttempt,
+    PlanningCounts,
+    StepRecord,
+)
+from kitchen_tamp.bilevel.sampling_session import Budget, SampleCallback, SamplingSession
+
+X = TypeVar("X")
+U = TypeVar("U")
+S = TypeVar("S")
+A = TypeVar("A")
+
+DEFAULT_SAMPLES_PER_STEP = 10
+DEFAULT_MAX_PLANS = 100
+DEFAULT_TIME_BUDGET_S = 60.0
+
+
+@dataclass
+class _StepCounter(Generic[A]):
+    action: A
+    samples: int = 0
+    failures: int = 0
+    backtracks: int = 0
+    last_failure: str | None = None
+
+    def record(self, plan_index: int, index: int) -> StepRecord[A]:
+        return StepRecord(plan_index, index, self.action, self.samples, self.failures, self.backtracks,
+                          self.last_failure)
+
+
+def plan_generator_of(problem: BilevelProblem[X, U, S, A]) -> AbstractPlanGenerator[S, A]:
+    """The problem's own plan generator, else shortest-first over its abstract successor function."""
+    if problem.plan_generator is not None:
+        return problem.plan_generator
+    return shortest_first_plans(problem.abstraction.successors, problem.abstraction.is_goal)
+
+
+def _refine_with_backtracking(
+    session: SamplingSession[X, U, S, A],
+    abstract_plan: AbstractPlan[S, A],
+    plan_index: int,
+    samples_per_step: int,
+    max_samples_per_plan: int | None,
+) -> tuple[PlanAttempt[S, A], int | None]:
+    """Refine one abstract plan: the attempt's record and the final state node (``None`` on failure)."""
+    transitions = abstract_plan.transitions
+    counters = [_StepCounter(t.action) for t in transitions]
+    nodes = [session.root] * (len(transitions) + 1)
+    tries_since_entered = [0] * len(transitions)
+    plan_samples = 0
+    deepest = 0
+    step = 0
+
+    def attempt(outcome: Outcome, detail: str) -> PlanAttempt[S, A]:
+        steps = tuple(counter.record(plan_index, i) for i, counter in enumerate(counters))
+        return PlanAttempt(plan_index, abstract_plan, steps, outcome, detail)
+
+    def blocked_at() -> str:
+        counter = counters[deepest]
+        return (f"refined {deepest} of {len(transitions)} steps at best; step {deepest + 1} "
+                f"({counter.action}) last failed: {counter.last_failure}")
+
+    while step < len(transitions):
+        if tries_since_entered[step] >= samples_per_step:
+            tries_since_entered[step] = 0
+            step -= 1
+            if step < 0:
+                return attempt(Outcome.STEPS_EXHAUSTED, blocked_at()), None
+            if tries_since_entered[step] < samples_per_step:
+                counters[step].backtracks += 1
+            continue
+        spent = session.budget_spent()
+        if spent is None and max_samples_per_plan is not None and plan_samples >= max_samples_per_plan:
+            spent = Outcome.PLAN_SAMPLE_BUDGET
+        if spent is not None:
+            return attempt(spent, f"{spent.value}; {blocked_at()}"), None
+        tries_since_entered[step] += 1
+        plan_samples += 1
+        counters[step].samples += 1
+        node = session.draw(nodes[step], transitions[step], plan_index, step)
+        if node is None:
+            counters[step].failures += 1
+            counters[step].last_failure = session.graph.failed_samples[-1].message
+            continue
+        step += 1
+        nodes[step] = node
+        deepest = max(deepest, min(step, len(transitions) - 1))
+    return attempt(Outcome.SOLVED, f"refined in {plan_samples} samples"), nodes[-1]
+
+
+def sesame(
+    problem: BilevelProblem[X, U, S, A],
+    *,
+    seed: int = 0,
+    max_plans: int | None = DEFAULT_MAX_PLANS,
+    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
+    max_samples: int | None = None,
+    max_samples_per_plan: int | None = None,
+    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
+    on_sample: SampleCallback[S, A] | None = None,
+    planner: str = "sesame",
+) -> BilevelResult[X, U, S, A]:
+    """Try abstract plans best first, refining each with backtracking, until one is refined.
+
+    Budgets (``None``: unlimited): ``max_plans`` abstract plans, ``samples_per_step``
+    samples per visit of a step before backtracking, ``max_samples`` samples in
+    all, ``max_samples_per_plan`` samples on any one abstract plan before moving
+    to the next, ``time_budget_s`` seconds (checked before every sample). The
+    seed fixes both the order of equally good abstract plans and every sample.
+    """
+    if samples_per_step < 1:
+        raise ValueError(f"samples_per_step must be >= 1, got {samples_per_step}")
+    if max_plans is not None and max_plans < 1:
+        raise ValueError(f"max_plans must be >= 1, got {max_plans}")
+    plan_seed, sample_seed = np.random.SeedSequence(seed).spawn(2)
+    session = SamplingSession(problem, np.random.default_rng(sample_seed), Budget(max_samples, time_budget_s),
+                              on_sample)
+    plans = plan_generator_of(problem)(session.graph.abstract_state_of(session.root),
+                                       np.random.default_rng(plan_seed))
+    attempts: list[PlanAttempt[S, A]] = []
+
+    def result(outcome: Outcome, detail: str, node: int | None = None) -> BilevelResult[X, U, S, A]:
+        counts = PlanningCounts(
+            samples=session.samples,
+            failures=session.failures,
+            backtracks=sum(step.backtracks for attempt in attempts for step in attempt.steps),
+            abstract_plans=len(attempts),
+        )
+        plan = None if node is None else session.refined_plan(node)
+        return BilevelResult(planner, plan, session.graph, counts, tuple(attempts), outcome, detail,
+                             session.elapsed())
+
+    def failure_detail(outcome: Outcome) -> str:
+        tried = f"{outcome.value} after {len(attempts)} abstract plan(s)"
+        return f"{tried}; last: {attempts[-1].detail}" if attempts else tried
+
+    while True:
+        if max_plans is not None and len(attempts) >= max_plans:
+            return result(Outcome.PLAN_BUDGET, failure_detail(Outcome.PLAN_BUDGET))
+        spent = session.budget_spent()
+        if spent is not None:
+            return result(spent, failure_detail(spent))
+        abstract_plan = next(plans, None)
+        if abstract_plan is None:
+            return result(Outcome.NO_ABSTRACT_PLAN, failure_detail(Outcome.NO_ABSTRACT_PLAN))
+        attempt, node = _refine_with_backtracking(session, abstract_plan, len(attempts), samples_per_step,
+                                                  max_samples_per_plan)
+        attempts.append(attempt)
+        if node is not None:
+            return result(Outcome.SOLVED, f"abstract plan {len(attempts)}: {attempt.detail}", node)
+        if attempt.outcome in (Outcome.SAMPLE_BUDGET, Outcome.TIME_BUDGET):
+            return result(attempt.outcome, failure_detail(attempt.outcome))
+
+
+def backtracking_refinement(
+    problem: BilevelProblem[X, U, S, A],
+    *,
+    seed: int = 0,
+    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
+    max_samples: int | None = None,
+    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
+    on_sample: SampleCallback[S, A] | None = None,
+) -> BilevelResult[X, U, S, A]:
+    """The first abstract plan only, refined with backtracking: SeSamE with ``max_plans=1``."""
+    return sesame(problem, seed=seed, max_plans=1, samples_per_step=samples_per_step, max_samples=max_samples,
+                  time_budget_s=time_budget_s, on_sample=on_sample, planner="backtracking")
+
+
+def greedy_refinement(
+    problem: BilevelProblem[X, U, S, A],
+    *,
+    seed: int = 0,
+    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
+    on_sample: SampleCallback[S, A] | None = None,
+) -> BilevelResult[X, U, S, A]:
+    """The first abstract plan, one sample per step, never revisited: SeSamE with
+    ``max_plans=1, samples_per_step=1``."""
+    return sesame(problem, seed=seed, max_plans=1, samples_per_step=1, time_budget_s=time_budget_s,
+                  on_sample=on_sample, planner="greedy")
