@@ -24,9 +24,8 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.world import CollisionChecker, panda_urdf_path
+from kitchen_tamp.world import CollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 PROBLEM = Path(__file__).resolve().parents[1] / "pddl" / "problem.pddl"
@@ -36,15 +35,9 @@ BoolArray = npt.NDArray[np.bool_]
 Validity = Callable[[FloatArray], BoolArray]
 
 
-def kitchen_urdf_paths(kitchen: KitchenScene) -> dict[str, Path | str]:
-    """Body name -> the URDF it was loaded from."""
-    boxes: dict[str, Path | str] = {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
-    return {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path(), **boxes}
-
-
 def drake_twin(kitchen: KitchenScene, checker: CollisionChecker) -> DrakeCollisionChecker:
     """The Drake model of the scene ``checker`` captured, with its allowed contacts and margin."""
-    description = describe_collision_checker(checker, kitchen_urdf_paths(kitchen))
+    description = describe_collision_checker(checker)
     return DrakeCollisionChecker(description, margin=checker.margin)
 
 

@@ -150,7 +150,8 @@ def test_no_symbolic_plan_exits_1(tmp_path: Path) -> None:
     "argv",
     [
         ["rrt", "--problem", "no/such/file.pddl"],
-        ["optimizes"],
+        ["optimizes", "--collision-model", "pybullet"],
+        ["optimizes", "--waypoints", "1"],
         ["rrt", "--seed", "-1"],
         ["rrt", "--rrt", "prm"],
         ["replay", "no/such/run"],
@@ -173,3 +174,26 @@ def test_gui_without_a_display_is_refused(
     monkeypatch.delenv("DISPLAY", raising=False)
     assert main(["rrt", "--gui"]) == 2
     assert "display" in capsys.readouterr().err
+
+
+def test_planning_with_the_pybullet_model_is_verified_too(tmp_path: Path) -> None:
+    assert main(["rrt", "--collision-model", "pybullet", "--out", str(tmp_path), "--no-video"]) == 0
+    report = _report(tmp_path)
+    assert {s["motion"]["collision_model"] for s in report["steps"]} == {"pybullet"}
+    assert report["verification"]["collision_free"] is True
+
+
+def test_optimizes_solves_verifies_and_compares_with_rrt_connect(tmp_path: Path) -> None:
+    assert main(["optimizes", "--out", str(tmp_path), "--no-video"]) == 0
+    report = _report(tmp_path)
+    assert report["solved"] is True and report["motion_planner"] == "trajectory_optimization"
+    assert report["verification"]["collision_free"] is True
+    for step in report["steps"]:
+        motion = step["motion"]
+        assert motion["solver"] in ("SNOPT", "IPOPT")
+        assert motion["attempts"][-1]["dense_check"] == "free"
+        assert motion["waypoints"] >= 50
+        assert motion["length_ratio_to_rrt_connect"] > 0.0
+        assert motion["path_length_rad"] >= 0.0
+    assert "optimization_s" in report["timing"]["steps"][0]
+    assert (tmp_path / "joints.png").exists()

@@ -77,11 +77,24 @@ def test_goal_in_collision_fails() -> None:
     assert result.solution_status == "goal in collision"
 
 
-def test_solver_reports_infeasible_when_goal_in_collision_is_not_prechecked() -> None:
-    goal_in_disc = CENTER + np.array([0.1, 0.0])
-    problem = build_trajectory_program(START, goal_in_disc, SPACE, disc_signed_distance, SETTINGS)
-    result = reconstruct_trajectory(problem, solve_trajectory_program(problem), 0.0)
-    assert not result.success
+def test_a_goal_closer_than_the_margin_but_free_is_reached() -> None:
+    goal_near_disc = CENTER + np.array([RADIUS + 0.5 * SETTINGS.collision_margin, 0.0])
+    result = optimize_trajectory(START, goal_near_disc, SPACE, disc_signed_distance, SETTINGS)
+    assert result.success, result.solution_status
+    np.testing.assert_allclose(result.waypoints[-1], goal_near_disc, atol=1e-9)
+    interior = [disc_signed_distance(q)[0] for q in result.waypoints[1:-1]]
+    assert min(interior) >= SETTINGS.collision_margin - 1e-6
+
+
+def test_points_between_waypoints_keep_the_margin() -> None:
+    coarse = TrajectoryOptimizationSettings(
+        num_waypoints=8, max_step=0.3, collision_margin=0.02, samples_between_waypoints=3
+    )
+    result = optimize_trajectory(START, GOAL, SPACE, disc_signed_distance, coarse)
+    assert result.success, result.solution_status
+    for a, b in zip(result.waypoints[:-1], result.waypoints[1:], strict=True):
+        for fraction in (0.25, 0.5, 0.75):
+            assert disc_signed_distance((1 - fraction) * a + fraction * b)[0] >= 0.02 - 1e-6
 
 
 def test_unreachable_step_bound_is_rejected() -> None:

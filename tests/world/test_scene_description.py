@@ -119,3 +119,10 @@ def test_missing_urdf_path_is_named(panda_scene: tuple[Scene, Robot]) -> None:
     del paths["sugar"]
     with pytest.raises(UnknownNameError, match="sugar"):
         describe_scene(scene, robot, paths)
+
+
+def test_urdf_paths_default_to_the_files_the_scene_loaded(panda_scene: tuple[Scene, Robot]) -> None:
+    scene, robot = panda_scene
+    recorded = describe_scene(scene, robot)
+    given = describe_scene(scene, robot, urdf_paths(robot))
+    assert [(b.name, b.urdf_path) for b in recorded.bodies] == [(b.name, b.urdf_path) for b in given.bodies]

@@ -10,6 +10,7 @@ import sys
 import time
 import traceback
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -42,6 +43,8 @@ from kitchen_tamp.refinement import (
     StepRecord,
     refine_plan,
 )
+from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
+from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
 
 SYMBOLIC_PLANNER = "bfs"
 """Search that gives the symbolic plan: breadth-first, so the plan is shortest."""
@@ -72,6 +75,13 @@ def _positive(text: str) -> int:
     return value
 
 
+def _at_least_two(text: str) -> int:
+    value = _seed(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError("must be at least 2")
+    return value
+
+
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
@@ -97,6 +107,13 @@ def build_parser() -> argparse.ArgumentParser:
         sub.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
         sub.add_argument("--samples-per-step", type=_positive, default=DEFAULT_SAMPLES_PER_STEP,
                          metavar="N", help="target samples an action may try (default %(default)s)")
+        sub.add_argument(
+            "--collision-model", choices=sorted(COLLISION_MODELS), default=DEFAULT_COLLISION_MODEL,
+            help="collision model for planning (default %(default)s; PyBullet always verifies)",
+        )
+        if mode == "optimizes":
+            sub.add_argument("--waypoints", type=_at_least_two, default=DEFAULT_SETTINGS.num_waypoints,
+                             metavar="N", help="joint waypoints per move (default %(default)s)")
         if mode == "rrt":
             sub.add_argument("--rrt", choices=sorted(RRT_VARIANTS), default="connect",
                              help="RRT-Connect (default) or the single-tree goal-biased RRT")
@@ -118,13 +135,16 @@ def _check_display(args: argparse.Namespace) -> None:
 
 def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
-        raise UsageError("the optimizes mode (Drake trajectory optimisation) is not available yet; use rrt")
+        if args.collision_model != "drake":
+            raise UsageError("optimizes needs signed distances: use --collision-model drake (the default)")
+        settings = replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints)
+        return OptimizingMotionBackend(settings)
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
 def _progress(total: int) -> Callable[[StepRecord], None]:
     def show(record: StepRecord) -> None:
-        seconds = sum(record.seconds.values())
+        seconds = record.seconds.get("skills_s", 0.0) + record.seconds.get("motion_s", 0.0)
         head = f"[{record.index + 1}/{total}] {record.action}"
         if record.solved:
             _say(f"{head}: {record.planner}, {record.waypoints} waypoints "
@@ -175,7 +195,10 @@ def verify_and_render(
     clock = time.perf_counter()
     timeline = build_timeline(trajectory)
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
-    report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE).name
+    show_velocities = run.mode == "optimizes"
+    if show_velocities:
+        title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles and velocities"
+    report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, show_velocities).name
     report.outputs["gif"] = None
     if not args.no_video:
         with build_kitchen_for_task(task) as kitchen:
@@ -229,7 +252,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         try:
             refined = refine_plan(
                 kitchen, result.plan, backend, np.random.default_rng(args.seed), args.samples_per_step,
-                on_step=_progress(len(result.plan)),
+                on_step=_progress(len(result.plan)), collision_model=args.collision_model,
             )
         except RefinementFailure as failure:
             records = (*failure.completed, failure.record)

@@ -3,8 +3,10 @@
 Decision variables are N x d joint waypoints. The cost is the sum of squared
 joint differences between consecutive waypoints; the first and last are held
 equal to start and goal; every waypoint stays within the joint limits; each
-step changes every joint by at most `max_step`; and every waypoint keeps a
-minimum signed distance of at least `collision_margin`, using a signed
+step changes every joint by at most `max_step`; and every interior waypoint,
+and `samples_between_waypoints` points on each step, keep a minimum signed
+distance of at least `collision_margin` (start and goal, being fixed, need only
+be collision-free, so they may be closer than the margin), using a signed
 distance (and its gradient) supplied by the caller, so that the kitchen can
 plug in Drake's SceneGraph or any other collision model.
 """
@@ -36,6 +38,14 @@ class TrajectoryOptimizationSettings:
     max_step: float = 0.1
     collision_margin: float = 0.01
     max_iterations: int = 1000
+    optimality_tolerance: float | None = None
+    """Solver's optimality tolerance (SNOPT "Major optimality tolerance", IPOPT "tol");
+    None keeps the solver's default."""
+    feasibility_tolerance: float | None = None
+    """SNOPT's "Major feasibility tolerance" (IPOPT "constr_viol_tol"); None keeps the default."""
+    samples_between_waypoints: int = 1
+    """Extra collision constraints on each step, at evenly spaced points between two waypoints:
+    the straight segment between waypoints is what gets executed and verified."""
 
     def __post_init__(self) -> None:
         if self.num_waypoints < 2:
@@ -44,6 +54,8 @@ class TrajectoryOptimizationSettings:
             raise ValueError(f"max_step must be positive, got {self.max_step}")
         if self.max_iterations < 1:
             raise ValueError(f"max_iterations must be at least 1, got {self.max_iterations}")
+        if self.samples_between_waypoints < 0:
+            raise ValueError(f"samples_between_waypoints must be >= 0, got {self.samples_between_waypoints}")
 
 
 class SignedDistanceConstraint:
@@ -52,6 +64,15 @@ class SignedDistanceConstraint:
     def __init__(self, signed_distance: SignedDistanceFunction) -> None:
         self.signed_distance = signed_distance
         self.evaluations = 0
+
+    def between(self, fraction: float) -> Callable[[npt.NDArray[Any]], npt.NDArray[Any]]:
+        """The constraint at ``(1 - fraction) q_a + fraction q_b`` of the stacked pair ``[q_a, q_b]``."""
+
+        def evaluate(pair: npt.NDArray[Any]) -> npt.NDArray[Any]:
+            half = len(pair) // 2
+            return self((1.0 - fraction) * pair[:half] + fraction * pair[half:])
+
+        return evaluate
 
     def __call__(self, q: npt.NDArray[Any]) -> npt.NDArray[Any]:
         self.evaluations += 1
@@ -130,21 +151,30 @@ def build_trajectory_program(
     step_matrix = np.hstack([-identity, identity])
     step_bound = np.full(dimension, settings.max_step)
     collision_constraint = SignedDistanceConstraint(signed_distance)
+    margin = np.array([settings.collision_margin])
+    fractions = np.arange(1, settings.samples_between_waypoints + 1) / (
+        settings.samples_between_waypoints + 1
+    )
     for index in range(count):
         if index + 1 < count:
-            program.AddLinearConstraint(
-                step_matrix,
-                -step_bound,
-                step_bound,
-                np.concatenate([waypoints[index], waypoints[index + 1]]),
+            pair = np.concatenate([waypoints[index], waypoints[index + 1]])
+            program.AddLinearConstraint(step_matrix, -step_bound, step_bound, pair)
+            for fraction in fractions:
+                program.AddConstraint(
+                    collision_constraint.between(float(fraction)),
+                    margin,
+                    np.array([np.inf]),
+                    pair,
+                    description=f"signed_distance_{index}+{fraction:.2f}",
+                )
+        if 0 < index < count - 1:  # start and goal are fixed: they need only be collision-free
+            program.AddConstraint(
+                collision_constraint,
+                margin,
+                np.array([np.inf]),
+                waypoints[index],
+                description=f"signed_distance_{index}",
             )
-        program.AddConstraint(
-            collision_constraint,
-            np.array([settings.collision_margin]),
-            np.array([np.inf]),
-            waypoints[index],
-            description=f"signed_distance_{index}",
-        )
     guess = initial_waypoints(q_start, q_goal, count, initial_path)
     program.SetInitialGuess(waypoints, guess)
     return TrajectoryProgram(program, waypoints, guess, collision_constraint, settings)

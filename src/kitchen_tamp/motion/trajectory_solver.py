@@ -39,12 +39,19 @@ def nonlinear_solver() -> SolverInterface:
     raise NoNonlinearSolverError("Drake has neither SNOPT nor IPOPT available")
 
 
-def _iteration_limit_options(solver: SolverInterface, max_iterations: int) -> SolverOptions:
+def _solver_options(solver: SolverInterface, settings: TrajectoryOptimizationSettings) -> SolverOptions:
+    """Iteration limit and tolerances of ``settings`` in the solver's own option names."""
     options = SolverOptions()
-    if solver.solver_id() == SnoptSolver.id():
-        options.SetOption(solver.solver_id(), "Major iterations limit", max_iterations)
-    else:
-        options.SetOption(solver.solver_id(), "max_iter", max_iterations)
+    snopt = solver.solver_id() == SnoptSolver.id()
+    names = (
+        ("Major iterations limit", "Major optimality tolerance", "Major feasibility tolerance")
+        if snopt
+        else ("max_iter", "tol", "constr_viol_tol")
+    )
+    values = (settings.max_iterations, settings.optimality_tolerance, settings.feasibility_tolerance)
+    for name, value in zip(names, values, strict=True):
+        if value is not None:
+            options.SetOption(solver.solver_id(), name, value)
     return options
 
 
@@ -72,7 +79,7 @@ def solve_trajectory_program(
 ) -> MathematicalProgramResult:
     """Run the solver (default `nonlinear_solver()`) from the program's initial guess."""
     solver = solver or nonlinear_solver()
-    options = _iteration_limit_options(solver, problem.settings.max_iterations)
+    options = _solver_options(solver, problem.settings)
     return solver.Solve(problem.program, None, options)
 
 
@@ -101,11 +108,11 @@ def optimize_trajectory(
     settings: TrajectoryOptimizationSettings | None = None,
     initial_path: JointPath | None = None,
 ) -> TrajectoryOptimizationResult:
-    """Build, solve and reconstruct. A start or goal closer than the margin fails unsolved."""
+    """Build, solve and reconstruct. A start or goal in collision fails unsolved."""
     settings = settings or TrajectoryOptimizationSettings()
     problem = build_trajectory_program(start, goal, space, signed_distance, settings, initial_path)
     for name, q in (("start", problem.initial_guess[0]), ("goal", problem.initial_guess[-1])):
-        if signed_distance(q)[0] < settings.collision_margin:
+        if signed_distance(q)[0] < 0.0:
             return TrajectoryOptimizationResult(
                 success=False,
                 waypoints=problem.initial_guess,

@@ -57,6 +57,8 @@ class MotionSolution:
     attempts: int
     figures: Mapping[str, Figure] = field(default_factory=dict)
     seconds: float = 0.0
+    timings: Mapping[str, float] = field(default_factory=dict)
+    """Wall-clock seconds of the back end's parts (for a report's timing section)."""
 
     @property
     def solved(self) -> bool:

@@ -18,6 +18,7 @@ from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, sample_act
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
+from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL, planning_checker
 
 DEFAULT_SAMPLES_PER_STEP = 4
 """Target samples (grasp, placement or handle grip) an action may try before it fails."""
@@ -88,12 +89,14 @@ def refine_action(
     rng: np.random.Generator,
     samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
     planning_margin: float = PLANNING_MARGIN,
+    collision_model: str = DEFAULT_COLLISION_MODEL,
 ) -> tuple[ActionTrajectory | None, StepRecord]:
     """Sample targets for ``action`` and connect the arm to them; on success the scene
     is left in the state after the action. Returns (trajectory or None, record)."""
     rejections: list[str] = []
     skill_samples = motion_attempts = 0
     skills_s = motion_s = 0.0
+    backend_s: dict[str, float] = {}
     motion: Mapping[str, Figure] = {}
     for sample in range(1, samples_per_step + 1):
         clock = time.perf_counter()
@@ -107,16 +110,17 @@ def refine_action(
         skill_samples += targets.samples_tried
         start = kitchen.arm_configuration()
         strict = targets.free_space_checker
-        with kitchen.scene.preserved():
-            kitchen.robot.set_gripper_width(targets.gripper_width)
-            checker = kitchen.collision_checker(margin=planning_margin)
+        checker = planning_checker(kitchen, targets, planning_margin, collision_model)
         margin = planning_margin
         if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
-            checker, margin = strict, 0.0  # an end is closer than the margin: plan without slack
+            # an end is closer than the margin: plan without slack
+            checker, margin = planning_checker(kitchen, targets, 0.0, collision_model), 0.0
         solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
         motion_s += solution.seconds
+        for part, seconds in solution.timings.items():
+            backend_s[part] = backend_s.get(part, 0.0) + seconds
         motion_attempts += solution.attempts
-        motion = {**solution.figures, "planning_margin_m": margin}
+        motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
         if solution.path is None:
             rejections.append(f"no {backend.name} path to the targets of sample {sample}: {solution.status}")
             continue
@@ -139,7 +143,7 @@ def refine_action(
             motion,
             trajectory.waypoint_count,
             tuple(rejections),
-            {"skills_s": skills_s, "motion_s": motion_s},
+            {"skills_s": skills_s, "motion_s": motion_s, **backend_s},
         )
         return trajectory, record
     record = StepRecord(
@@ -153,7 +157,7 @@ def refine_action(
         motion,
         0,
         tuple(rejections),
-        {"skills_s": skills_s, "motion_s": motion_s},
+        {"skills_s": skills_s, "motion_s": motion_s, **backend_s},
     )
     return None, record
 
@@ -165,6 +169,7 @@ def refine_plan(
     rng: np.random.Generator,
     samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
     on_step: Callable[[StepRecord], None] | None = None,
+    collision_model: str = DEFAULT_COLLISION_MODEL,
 ) -> RefinedPlan:
     """Refine ``actions`` in order from the scene as it is (greedy: no backtracking).
 
@@ -173,7 +178,9 @@ def refine_plan(
     steps: list[ActionTrajectory] = []
     records: list[StepRecord] = []
     for index, action in enumerate(actions):
-        trajectory, record = refine_action(kitchen, index, action, backend, rng, samples_per_step)
+        trajectory, record = refine_action(
+            kitchen, index, action, backend, rng, samples_per_step, collision_model=collision_model
+        )
         if on_step is not None:
             on_step(record)
         if trajectory is None:

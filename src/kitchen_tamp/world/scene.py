@@ -38,6 +38,7 @@ class Scene:
         if self.client < 0:
             raise SceneClosedError("could not connect to a PyBullet physics server")
         self._bodies: dict[str, Body] = {}
+        self._urdf_paths: dict[str, Path] = {}
         self._attachments: dict[str, Attachment] = {}
         self._connected = True
 
@@ -83,7 +84,13 @@ class Scene:
         )
         body = Body(self.client, uid, name)
         self._bodies[name] = body
+        self._urdf_paths[name] = Path(path).resolve()
         return body
+
+    @property
+    def urdf_paths(self) -> dict[str, Path]:
+        """Body name -> the URDF file it was loaded from (a copy)."""
+        return dict(self._urdf_paths)
 
     def body(self, name: str) -> Body:
         """The body called ``name``."""

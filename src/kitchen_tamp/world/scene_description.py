@@ -7,8 +7,8 @@ collision check allows. ``describe_collision_checker`` does the same for the
 scene as a ``CollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
 (``a_from_b`` maps b-coordinates to a), frames are URDF link frames.
 
-PyBullet does not remember which file a body came from, so the caller names
-each body's URDF (``urdf_paths``: body name -> path).
+Each body's URDF is the file the ``Scene`` loaded it from, unless the caller
+names others (``urdf_paths``: body name -> path).
 """
 
 from __future__ import annotations
@@ -98,7 +98,7 @@ class SceneDescription:
 def describe_scene(
     scene: Scene,
     robot: Robot,
-    urdf_paths: Mapping[str, Path | str],
+    urdf_paths: Mapping[str, Path | str] | None = None,
     allowed: Iterable[AllowedContact] = (),
     attachments: Sequence[Attachment] | None = None,
 ) -> SceneDescription:
@@ -106,6 +106,7 @@ def describe_scene(
 
     Raises ``UnknownNameError`` when a body has no entry in ``urdf_paths``.
     """
+    urdf_paths = scene.urdf_paths if urdf_paths is None else urdf_paths
     missing = sorted(b.name for b in scene.bodies if b.name not in urdf_paths)
     if missing:
         raise UnknownNameError(f"no URDF path given for bodies {', '.join(missing)}")
@@ -141,7 +142,7 @@ def describe_scene(
 
 
 def describe_collision_checker(
-    checker: CollisionChecker, urdf_paths: Mapping[str, Path | str]
+    checker: CollisionChecker, urdf_paths: Mapping[str, Path | str] | None = None
 ) -> SceneDescription:
     """The scene as ``checker`` captured it, with its allowed contacts (the scene is left as it is)."""
     with checker.captured_scene() as attachments:

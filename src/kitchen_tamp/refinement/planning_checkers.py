@@ -1,0 +1,38 @@
+"""The collision model free-space moves are planned with: Drake's (faster) or PyBullet's.
+
+Both check the scene a skill's free-space checker captured (what the hand
+carries, where the drawer is) and keep ``margin`` metres of clearance. PyBullet
+stays the simulator and the verifier whichever is chosen: every planned path is
+re-checked with the skill's own PyBullet checker before it is accepted.
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+
+from kitchen_tamp.kitchen import KitchenScene, SkillTargets
+from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
+from kitchen_tamp.world.scene_description import describe_collision_checker
+
+COLLISION_MODELS = MappingProxyType(
+    {
+        "drake": "Drake SceneGraph distance queries on the same URDFs (about 2x faster per check)",
+        "pybullet": "PyBullet closest-point queries, as the verifier uses",
+    }
+)
+"""Name -> description of the collision models planning can use."""
+DEFAULT_COLLISION_MODEL = "drake"
+
+
+def planning_checker(
+    kitchen: KitchenScene, targets: SkillTargets, margin: float, model: str = DEFAULT_COLLISION_MODEL
+) -> BoundedCollisionChecker:
+    """A checker of the scene ``targets.free_space_checker`` captured, keeping ``margin``."""
+    if model == "drake":
+        return DrakeCollisionChecker(describe_collision_checker(targets.free_space_checker), margin=margin)
+    if model == "pybullet":
+        with kitchen.scene.preserved():
+            kitchen.robot.set_gripper_width(targets.gripper_width)
+            return kitchen.collision_checker(margin=margin)
+    raise ValueError(f"unknown collision model {model!r}; choose one of {', '.join(COLLISION_MODELS)}")
