@@ -5,13 +5,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
-from kitchen_tamp.planning import Task, load_task, plan
-from kitchen_tamp.refinement import SamplingMotionBackend, refine_plan
+from kitchen_tamp.planning import Task, load_task
+from kitchen_tamp.refinement import SamplingMotionBackend, refine_with_sesame
 
 REPO = Path(__file__).resolve().parents[2]
 PROBLEM = REPO / "pddl" / "problem.pddl"
@@ -24,8 +23,7 @@ def kitchen_task() -> Task:
 
 @pytest.fixture(scope="session")
 def refined(kitchen_task: Task) -> KitchenTrajectory:
-    result = plan(kitchen_task, "bfs")
-    assert result.plan is not None
     with build_kitchen_for_task(kitchen_task) as kitchen:
-        refined = refine_plan(kitchen, result.plan, SamplingMotionBackend(), np.random.default_rng(0))
+        refined = refine_with_sesame(kitchen, kitchen_task, SamplingMotionBackend(), seed=0).refined
+    assert refined is not None
     return refined.trajectory

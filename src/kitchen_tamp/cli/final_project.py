@@ -9,12 +9,13 @@ import os
 import sys
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
+from kitchen_tamp.bilevel import SampleEvent
 from kitchen_tamp.cli import ExitCode
 from kitchen_tamp.execute import (
     FRAME_SECONDS,
@@ -33,15 +34,16 @@ from kitchen_tamp.execute import (
 )
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
-from kitchen_tamp.planning import PlanningInputError, Task, load_task, plan
+from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
-from kitchen_tamp.refinement import (
+from kitchen_tamp.refinement import MotionBackend, SamplingMotionBackend, StepRecord
+from kitchen_tamp.refinement.kitchen_sesame import (
+    DEFAULT_MAX_PLANS,
+    DEFAULT_MAX_SAMPLES,
     DEFAULT_SAMPLES_PER_STEP,
-    MotionBackend,
-    RefinementFailure,
-    SamplingMotionBackend,
-    StepRecord,
-    refine_plan,
+    SesameBudgets,
+    SesameRefinement,
+    refine_with_sesame,
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
@@ -105,8 +107,13 @@ def build_parser() -> argparse.ArgumentParser:
                          help="problem file; a bare name is also looked up in pddl/ (default: problem.pddl)")
         sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
         sub.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
+        sub.add_argument("--max-plans", type=_positive, default=DEFAULT_MAX_PLANS, metavar="N",
+                         help="abstract plans SeSamE may try, shortest first (default %(default)s)")
         sub.add_argument("--samples-per-step", type=_positive, default=DEFAULT_SAMPLES_PER_STEP,
-                         metavar="N", help="target samples an action may try (default %(default)s)")
+                         metavar="N", help="samples of an action (targets + motion) before SeSamE "
+                                           "steps back (default %(default)s)")
+        sub.add_argument("--max-samples", type=_positive, default=DEFAULT_MAX_SAMPLES, metavar="N",
+                         help="samples over the whole run (default %(default)s)")
         sub.add_argument(
             "--collision-model", choices=sorted(COLLISION_MODELS), default=DEFAULT_COLLISION_MODEL,
             help="collision model for planning (default %(default)s; PyBullet always verifies)",
@@ -142,16 +149,30 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
-def _progress(total: int) -> Callable[[StepRecord], None]:
-    def show(record: StepRecord) -> None:
+def _progress(event: SampleEvent[State, GroundAction], record: StepRecord | None) -> None:
+    """One line per sample: which plan and step, and what the sample gave."""
+    where = f"plan {(event.plan_index or 0) + 1}, step {(event.step_index or 0) + 1}"
+    head = f"[{where}] {event.transition.action.text}"
+    seconds = 0.0
+    if record is not None:
         seconds = record.seconds.get("skills_s", 0.0) + record.seconds.get("motion_s", 0.0)
-        head = f"[{record.index + 1}/{total}] {record.action}"
-        if record.solved:
-            _say(f"{head}: {record.planner}, {record.waypoints} waypoints "
-                 f"({record.motion.get('waypoints')} planned), {seconds:.2f} s")
-        else:
-            _say(f"{head}: FAILED after {record.target_samples} samples, {seconds:.2f} s")
-    return show
+    if event.succeeded and record is not None:
+        _say(f"{head}: {record.planner}, {record.waypoints} waypoints "
+             f"({record.motion.get('waypoints')} planned), {seconds:.2f} s")
+    else:
+        _say(f"{head}: sample failed ({event.failure}), {seconds:.2f} s")
+
+
+def _stuck_step(outcome: SesameRefinement) -> tuple[int | None, str | None]:
+    """(1-based step, action) where the first abstract plan's refinement got stuck."""
+    attempts = outcome.result.attempts
+    if not attempts:
+        return None, None
+    failing = [step for step in attempts[0].steps if step.failures]
+    if not failing:
+        return None, None
+    step = failing[-1]
+    return step.index + 1, step.action.text
 
 
 def _wait_for_enter(index: int, action: str) -> None:
@@ -246,21 +267,21 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
             report.fail("symbolic", f"no symbolic plan: {result.message}")
             return _finish(report, out_dir)
         report.plan = [action.text for action in result.plan]
-        _say(f"{problem.name}: {len(result.plan)}-action plan by {SYMBOLIC_PLANNER}; refining with "
+        _say(f"{problem.name}: shortest plan has {len(result.plan)} actions; refining with SeSamE and "
              f"{backend.name} (seed {args.seed})")
         clock = time.perf_counter()
-        try:
-            refined = refine_plan(
-                kitchen, result.plan, backend, np.random.default_rng(args.seed), args.samples_per_step,
-                on_step=_progress(len(result.plan)), collision_model=args.collision_model,
-            )
-        except RefinementFailure as failure:
-            records = (*failure.completed, failure.record)
-            report.steps = [r.figures() for r in records]
-            _record_step_timing(report, records)
-            report.fail("refinement", str(failure), failure.record.index + 1, failure.record.action)
-            return _finish(report, out_dir)
+        budgets = SesameBudgets(args.max_plans, args.samples_per_step, args.max_samples)
+        outcome = refine_with_sesame(
+            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=_progress
+        )
         report.timing["refinement_s"] = time.perf_counter() - clock
+        report.bilevel = outcome.report_data()
+        refined = outcome.refined
+        if refined is None:
+            step, action = _stuck_step(outcome)
+            report.fail("refinement", f"SeSamE: {outcome.result.detail}", step, action)
+            return _finish(report, out_dir)
+        report.plan = refined.trajectory.plan
     report.steps = [r.figures() for r in refined.records]
     _record_step_timing(report, refined.records)
     run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)

@@ -31,6 +31,7 @@ class RunReport:
     steps: list[dict[str, object]] = field(default_factory=list)
     failure: dict[str, object] | None = None
     verification: dict[str, object] | None = None
+    bilevel: dict[str, object] | None = None
     outputs: dict[str, str | None] = field(default_factory=dict)
     timing: dict[str, object] = field(default_factory=dict)
 
@@ -58,6 +59,7 @@ class RunReport:
             "solved": self.solved,
             "failure": self.failure,
             "steps": self.steps,
+            "bilevel": self.bilevel,
             "verification": self.verification,
             "outputs": self.outputs,
             "timing": {k: round(v, 4) if isinstance(v, float) else v for k, v in self.timing.items()},

@@ -1,30 +1,25 @@
-"""Turning a symbolic plan into arm motion in the kitchen: skills give targets, a motion
-back end (sampling-based planning, or trajectory optimisation) connects them."""
+"""Turning a symbolic plan into arm motion in the kitchen, as SeSamE: skills give targets,
+a motion back end (sampling-based planning, or trajectory optimisation) connects them,
+and the bilevel planner backtracks when a step cannot be refined."""
 
+from kitchen_tamp.refinement.kitchen_sesame import SesameBudgets, SesameRefinement, refine_with_sesame
 from kitchen_tamp.refinement.motion_backend import (
     VERIFICATION_RESOLUTION,
     MotionBackend,
     MotionSolution,
     SamplingMotionBackend,
 )
-from kitchen_tamp.refinement.refine_plan import (
-    DEFAULT_SAMPLES_PER_STEP,
-    RefinedPlan,
-    RefinementFailure,
-    StepRecord,
-    refine_action,
-    refine_plan,
-)
+from kitchen_tamp.refinement.refine_action import RefinedKitchenPlan, StepRecord, refine_action
 
 __all__ = [
-    "DEFAULT_SAMPLES_PER_STEP",
     "VERIFICATION_RESOLUTION",
     "MotionBackend",
     "MotionSolution",
-    "RefinedPlan",
-    "RefinementFailure",
+    "RefinedKitchenPlan",
     "SamplingMotionBackend",
+    "SesameBudgets",
+    "SesameRefinement",
     "StepRecord",
     "refine_action",
-    "refine_plan",
+    "refine_with_sesame",
 ]

@@ -1,15 +1,14 @@
-"""Refine a symbolic plan in the kitchen: each action's skill gives targets, a motion
-back end connects the arm to them, and the scene advances to the action's outcome.
+"""Refine one action in the kitchen: its skill gives targets, a motion back end connects
+the arm to them, and the scene advances to the action's outcome.
 
-Refinement is greedy here: an action gets up to ``samples_per_step`` target
-samples (each with the back end's own attempts) and the first that connects is
-kept; earlier actions are never revisited.
+This is one sample of the kitchen's trajectory sampler; ``kitchen_sesame``
+decides which action to sample next, how often, and when to step back.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -61,24 +60,11 @@ class StepRecord:
 
 
 @dataclass(frozen=True, eq=False)
-class RefinedPlan:
+class RefinedKitchenPlan:
     """A refined plan and one record per action."""
 
     trajectory: KitchenTrajectory
     records: tuple[StepRecord, ...]
-
-
-class RefinementFailure(Exception):
-    """An action of the plan could not be refined within its budget."""
-
-    def __init__(self, record: StepRecord, completed: tuple[StepRecord, ...]) -> None:
-        reason = record.rejections[-1] if record.rejections else "no sample tried"
-        super().__init__(
-            f"step {record.index + 1} {record.action} could not be refined in "
-            f"{record.target_samples} target samples: {reason}"
-        )
-        self.record = record
-        self.completed = completed
 
 
 def refine_action(
@@ -160,31 +146,3 @@ def refine_action(
         {"skills_s": skills_s, "motion_s": motion_s, **backend_s},
     )
     return None, record
-
-
-def refine_plan(
-    kitchen: KitchenScene,
-    actions: Sequence[GroundAction],
-    backend: MotionBackend,
-    rng: np.random.Generator,
-    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
-    on_step: Callable[[StepRecord], None] | None = None,
-    collision_model: str = DEFAULT_COLLISION_MODEL,
-) -> RefinedPlan:
-    """Refine ``actions`` in order from the scene as it is (greedy: no backtracking).
-
-    Raises ``RefinementFailure`` naming the first action that could not be refined.
-    """
-    steps: list[ActionTrajectory] = []
-    records: list[StepRecord] = []
-    for index, action in enumerate(actions):
-        trajectory, record = refine_action(
-            kitchen, index, action, backend, rng, samples_per_step, collision_model=collision_model
-        )
-        if on_step is not None:
-            on_step(record)
-        if trajectory is None:
-            raise RefinementFailure(record, tuple(records))
-        steps.append(trajectory)
-        records.append(record)
-    return RefinedPlan(KitchenTrajectory(tuple(steps)), tuple(records))

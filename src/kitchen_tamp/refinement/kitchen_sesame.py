@@ -1,0 +1,180 @@
+"""The kitchen task as SeSamE: abstract plans from our PDDL planner (shortest first), each
+action refined by its skill followed by the mode's motion back end, with backtracking.
+
+A low-level state is a ``KitchenState``: a snapshot of the simulated scene (poses,
+joints including the gripper and the drawer, attachments). The sampler of an
+action restores the snapshot, draws one target sample and solves the move
+(``refine_action`` with one sample), and returns the snapshot after the action;
+Ψ is ``abstract_state`` of the restored scene.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from kitchen_tamp.bilevel import (
+    AbstractTransition,
+    BilevelResult,
+    SampleEvent,
+    SamplingFailure,
+    Trajectory,
+    relational_problem,
+    sesame,
+)
+from kitchen_tamp.kitchen import KitchenScene, abstract_state
+from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
+from kitchen_tamp.planning import Atom, GroundAction, State, Task
+from kitchen_tamp.refinement.motion_backend import MotionBackend
+from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL
+from kitchen_tamp.refinement.refine_action import RefinedKitchenPlan, StepRecord, refine_action
+from kitchen_tamp.world import SceneState
+
+DEFAULT_MAX_PLANS = 5
+"""Abstract plans SeSamE may try, shortest first."""
+DEFAULT_SAMPLES_PER_STEP = 4
+"""Samples of one action (target sample + motion) per visit before stepping back."""
+DEFAULT_MAX_SAMPLES = 120
+"""Samples over the whole run."""
+DEFAULT_TIME_BUDGET_S = 900.0
+"""Far above what the sample budgets take, so the seed alone decides the result."""
+
+
+@dataclass(frozen=True, eq=False)
+class KitchenState:
+    """A snapshot of the kitchen scene: the low-level state x of the bilevel problem."""
+
+    scene: SceneState
+
+
+@dataclass(frozen=True)
+class SesameBudgets:
+    """How much SeSamE may try before the run fails."""
+
+    max_plans: int = DEFAULT_MAX_PLANS
+    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP
+    max_samples: int = DEFAULT_MAX_SAMPLES
+    time_budget_s: float = DEFAULT_TIME_BUDGET_S
+
+
+@dataclass
+class KitchenSampler:
+    """Skill + motion back end as the trajectory sampler of every kitchen action."""
+
+    kitchen: KitchenScene
+    task: Task
+    backend: MotionBackend
+    collision_model: str = DEFAULT_COLLISION_MODEL
+    records: dict[int, StepRecord] = field(default_factory=dict)
+    """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
+    last_record: StepRecord | None = None
+
+    def atoms_of(self, state: KitchenState) -> frozenset[Atom]:
+        """Ψ(x): the atoms true in the snapshot."""
+        self.kitchen.scene.restore_state(state.scene)
+        return abstract_state(self.kitchen, self.task.objects)
+
+    def __call__(
+        self,
+        state: KitchenState,
+        transition: AbstractTransition[State, GroundAction],
+        rng: np.random.Generator,
+    ) -> Trajectory[KitchenState, ActionTrajectory]:
+        self.kitchen.scene.restore_state(state.scene)
+        action = transition.action
+        trajectory, record = refine_action(
+            self.kitchen,
+            0,
+            action,
+            self.backend,
+            rng,
+            samples_per_step=1,
+            collision_model=self.collision_model,
+        )
+        self.last_record = record
+        if trajectory is None:
+            raise SamplingFailure(record.rejections[-1] if record.rejections else f"{action.text} failed")
+        self.records[id(trajectory)] = record
+        return Trajectory((state, KitchenState(self.kitchen.scene.save_state())), (trajectory,))
+
+
+@dataclass(frozen=True, eq=False)
+class SesameRefinement:
+    """SeSamE's answer for the kitchen: the refined plan (None on failure) and what it cost."""
+
+    refined: RefinedKitchenPlan | None
+    result: BilevelResult[KitchenState, ActionTrajectory, State, GroundAction]
+
+    def report_data(self) -> dict[str, object]:
+        """The ``bilevel`` section of a report: plans tried, samples, failures, backtracks."""
+        result = self.result
+        return {
+            "planner": result.planner,
+            "outcome": str(result.outcome),
+            "detail": result.detail,
+            "abstract_plans_tried": result.counts.abstract_plans,
+            "samples": result.counts.samples,
+            "failures": result.counts.failures,
+            "backtracks": result.counts.backtracks,
+            "plans": [
+                {
+                    "plan": [a.text for a in attempt.abstract_plan.actions],
+                    "outcome": str(attempt.outcome),
+                    "steps": [
+                        {
+                            "action": step.action.text,
+                            "samples": step.samples,
+                            "failures": step.failures,
+                            "backtracks": step.backtracks,
+                            "last_failure": step.last_failure,
+                        }
+                        for step in attempt.steps
+                    ],
+                }
+                for attempt in result.attempts
+            ],
+        }
+
+
+def refine_with_sesame(
+    kitchen: KitchenScene,
+    task: Task,
+    backend: MotionBackend,
+    seed: int,
+    budgets: SesameBudgets = SesameBudgets(),
+    collision_model: str = DEFAULT_COLLISION_MODEL,
+    on_sample: Callable[[SampleEvent[State, GroundAction], StepRecord | None], None] | None = None,
+) -> SesameRefinement:
+    """Run SeSamE from the scene as it is; on success the scene is left in the final state."""
+    sampler = KitchenSampler(kitchen, task, backend, collision_model)
+    initial = KitchenState(kitchen.scene.save_state())
+    problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
+
+    def report(event: SampleEvent[State, GroundAction]) -> None:
+        if on_sample is not None:
+            on_sample(event, sampler.last_record)
+
+    result = sesame(
+        problem,
+        seed=seed,
+        max_plans=budgets.max_plans,
+        samples_per_step=budgets.samples_per_step,
+        max_samples=budgets.max_samples,
+        time_budget_s=budgets.time_budget_s,
+        on_sample=report,
+    )
+    if result.plan is None:
+        kitchen.scene.restore_state(initial.scene)
+        return SesameRefinement(None, result)
+    steps = [step.trajectory.actions[0] for step in result.plan.steps]
+    records = tuple(
+        _renumbered(sampler.records[id(trajectory)], index) for index, trajectory in enumerate(steps)
+    )
+    kitchen.scene.restore_state(result.plan.final_state.scene)
+    return SesameRefinement(RefinedKitchenPlan(KitchenTrajectory(tuple(steps)), records), result)
+
+
+def _renumbered(record: StepRecord, index: int) -> StepRecord:
+    return replace(record, index=index)
