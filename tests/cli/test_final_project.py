@@ -201,3 +201,14 @@ def test_optimizes_solves_verifies_and_compares_with_rrt_connect(tmp_path: Path)
         assert motion["path_length_rad"] >= 0.0
     assert "optimization_s" in report["timing"]["steps"][0]
     assert (tmp_path / "joints.png").exists()
+
+
+def test_step_waits_for_enter_before_each_action(
+    hard_run: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    prompts: list[str] = []
+    monkeypatch.setattr("builtins.input", lambda prompt="": prompts.append(prompt) or "")
+    assert main(["replay", str(hard_run), "--out", str(tmp_path), "--no-video", "--step"]) == 0
+    plan = _report(hard_run)["plan"]
+    assert len(prompts) == len(plan)
+    assert all(action in prompt for action, prompt in zip(plan, prompts, strict=True))

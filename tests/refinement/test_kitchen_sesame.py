@@ -30,10 +30,9 @@ def test_sesame_refines_the_kitchen_problem_and_the_result_verifies() -> None:
         assert verify_trajectory(fresh, task, outcome.refined.trajectory).verified
 
 
-def test_sesame_backtracks_when_an_action_fails_from_the_previous_outcome(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    """Placing the spam fails unless its pick was sampled at least twice: SeSamE must go back."""
+@pytest.fixture
+def place_refused_until_second_pick(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Placing the spam fails unless its pick was sampled at least twice: only stepping back helps."""
     real = kitchen_sesame.refine_action
     picks = {"count": 0}
 
@@ -48,13 +47,16 @@ def test_sesame_backtracks_when_an_action_fails_from_the_previous_outcome(
         if action.name == "pickUp" and action.args[0] == "spam":
             picks["count"] += 1
         if action.name == "placeIn" and picks["count"] < 2:
-            record = StepRecord(
-                index, action.text, "test", False, 1, 0, 0, {}, 0, ("placement refused by the test",)
+            return None, StepRecord(
+                index, action.text, "test", False, 1, 0, 0, {}, 0, ("refused by the test",)
             )
-            return None, record
         return real(kitchen, index, action, backend, rng, **options)  # type: ignore[arg-type]
 
     monkeypatch.setattr(kitchen_sesame, "refine_action", picky)
+
+
+@pytest.mark.usefixtures("place_refused_until_second_pick")
+def test_sesame_backtracks_when_an_action_fails_from_the_previous_outcome() -> None:
     task = load_task(PROBLEM)
     with build_kitchen_for_task(task) as kitchen:
         outcome = refine_with_sesame(
@@ -67,25 +69,8 @@ def test_sesame_backtracks_when_an_action_fails_from_the_previous_outcome(
         assert verify_trajectory(fresh, task, outcome.refined.trajectory).verified
 
 
-def test_greedy_budgets_fail_where_backtracking_succeeds(monkeypatch: pytest.MonkeyPatch) -> None:
-    real = kitchen_sesame.refine_action
-    picks = {"count": 0}
-
-    def picky(
-        kitchen: KitchenScene,
-        index: int,
-        action: GroundAction,
-        backend: MotionBackend,
-        rng: np.random.Generator,
-        **options: object,
-    ) -> tuple[object, StepRecord]:
-        if action.name == "pickUp" and action.args[0] == "spam":
-            picks["count"] += 1
-        if action.name == "placeIn" and picks["count"] < 2:
-            return None, StepRecord(index, action.text, "test", False, 1, 0, 0, {}, 0, ("refused",))
-        return real(kitchen, index, action, backend, rng, **options)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(kitchen_sesame, "refine_action", picky)
+@pytest.mark.usefixtures("place_refused_until_second_pick")
+def test_greedy_budgets_fail_where_backtracking_succeeds() -> None:
     task = load_task(PROBLEM)
     with build_kitchen_for_task(task) as kitchen:
         greedy = refine_with_sesame(
