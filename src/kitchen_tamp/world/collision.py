@@ -7,27 +7,19 @@ scene when it is made (what the arm carries, where the drawer is), so it stays
 right even if the scene changes later, and it always leaves the scene as it
 found it.
 
-Checked: every moving robot link against every other body; every body the robot
-carries against every other body and the robot's non-gripper links; robot links
-against each other when at least two movable joints separate them (links joined
-by one joint touch by construction).
-
-Speed (tens of microseconds per configuration): the pairs are listed once, link
-by link, without the allowed contacts. Per configuration the moving links'
-axis-aligned bounds are read (``getAABB`` is exact and current after a joint
-reset) and only the pairs whose bounds come within the query distance go to
-``getClosestPoints`` (bounds ``g`` apart mean shapes at least ``g`` apart), the
-most overlapping first, stopping at the first collision. The scene is saved and
-restored as raw PyBullet values rather than ``Pose`` objects.
+Which link pairs are checked, and which of them are measured at a
+configuration (an axis-aligned-bounds broadphase, most overlapping first), is
+``checked_pairs``. Here, per configuration, the arm is reset, the pairs the
+broadphase hands over go to ``getClosestPoints``, stopping at the first
+collision, and the scene is saved and restored as raw PyBullet values rather
+than ``Pose`` objects: tens of microseconds per configuration.
 """
 
 from __future__ import annotations
 
-import functools
 import itertools
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass
 
 import numpy as np
 import pybullet as p
@@ -35,6 +27,8 @@ from numpy.typing import NDArray
 
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body
+from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedPairs
+from kitchen_tamp.world.checked_pairs import AllowedContact as AllowedContact
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
 from kitchen_tamp.world.transforms import FloatArray, Pose
@@ -44,9 +38,6 @@ BoolArray = NDArray[np.bool_]
 CLEARANCE_HORIZON = 0.5
 """Distance (m) beyond which ``min_clearance`` stops looking and reports this value."""
 
-BOUNDS_SLACK = 1e-6
-"""Pairs whose bounds are within the query distance plus this (m) are measured exactly."""
-
 STATE_TOLERANCE = 1e-12
 """Scene states this close count as the snapshot (PyBullet echoes orientations to an ulp)."""
 
@@ -54,61 +45,6 @@ RawBodyState = tuple[tuple[float, ...], tuple[float, ...], tuple[float, ...]]
 """A body's centre-of-mass position and quaternion and its movable joints' positions."""
 
 _flatten = itertools.chain.from_iterable
-
-
-@dataclass(frozen=True)
-class AllowedContact:
-    """Robot links (all when None) that may touch ``body``'s link (all links when None).
-
-    Used for intended contact: the fingers around the box being grasped, the
-    gripper on the drawer handle.
-    """
-
-    body: str
-    link: str | None = None
-    robot_links: frozenset[str] | None = None
-
-    def allows(self, robot_link: str, body: str, link: str) -> bool:
-        """Whether this contact covers ``robot_link`` touching ``body``'s ``link``."""
-        return (
-            body == self.body
-            and (self.link is None or self.link == link)
-            and (self.robot_links is None or robot_link in self.robot_links)
-        )
-
-
-def _ancestry(body: Body, link: int) -> list[tuple[int, bool]]:
-    """(link, whether its joint is movable) from ``link`` up to the base, base excluded."""
-    parents = {j.index: (j.parent_index, j.movable) for j in body.joints}
-    chain = []
-    while link != BASE_LINK:
-        parent, movable = parents[link]
-        chain.append((link, movable))
-        link = parent
-    return chain
-
-
-def _movable_joints_between(body: Body, link_a: int, link_b: int) -> int:
-    """Number of movable joints on the kinematic chain joining two links of a body."""
-    chain_a, chain_b = _ancestry(body, link_a), _ancestry(body, link_b)
-    shared = {lnk for lnk, _ in chain_a} & {lnk for lnk, _ in chain_b}
-    return sum(movable for lnk, movable in chain_a + chain_b if lnk not in shared)
-
-
-@functools.lru_cache(maxsize=64)
-def _collision_links(body: Body) -> tuple[int, ...]:
-    """Indices of the links of ``body`` that have collision shapes."""
-    client = body.client
-    return tuple(i for i in body.link_indices if p.getCollisionShapeData(body.uid, i, physicsClientId=client))
-
-
-@functools.lru_cache(maxsize=16)
-def _robot_link_sets(body: Body, first_arm_joint: str) -> tuple[frozenset[int], tuple[tuple[int, int], ...]]:
-    """(links moved by the arm, self-collision pairs with >= 2 movable joints between them)."""
-    root = body.joint(first_arm_joint).index
-    moving = frozenset(i for i in body.link_indices if any(lnk == root for lnk, _ in _ancestry(body, i)))
-    pairs = itertools.combinations(_collision_links(body), 2)
-    return moving, tuple((a, b) for a, b in pairs if _movable_joints_between(body, a, b) >= 2)
 
 
 def _in_dependency_order(attachments: Sequence[Attachment]) -> tuple[Attachment, ...]:
@@ -189,62 +125,10 @@ class CollisionChecker:
         self._robot_slot = self._bodies.index(robot.body)
         self._arm_in_robot_state = [self._joints[self._robot_slot].index(i) for i in self._arm]
         self._carried_slots = tuple(self._bodies.index(a.child) for a in self.carried)
-        self._build_pairs()
-        self._static_bounds = self._bounds(self._static_rows)
-
-    # -- pair table ------------------------------------------------------------------------------
-    def _build_pairs(self) -> None:
-        """Rows (body, link) whose bounds are read, and the checked pairs of rows."""
-        robot = self.robot.body
-        moving, self_pairs = _robot_link_sets(robot, self.robot.description.arm_joints[0])
-        gripper = {robot.link_index(n) for n in self.robot.gripper_links}
-        robot_links = _collision_links(robot)
-        obstacle_links = [(o, b) for o in self.obstacles for b in _collision_links(o)]
-        moving_rows = [(robot, i) for i in robot_links if i in moving]
-        moving_rows += [(a.child, i) for a in self.carried for i in _collision_links(a.child)]
-        static_rows = [(robot, i) for i in robot_links if i not in moving] + obstacle_links
-        pairs = [
-            (robot, a, o, b)
-            for a in robot_links
-            if a in moving
-            for o, b in obstacle_links
-            if not self._is_allowed(a, o, b)
-        ]
-        for child in (a.child for a in self.carried):
-            for c in _collision_links(child):
-                pairs += [(child, c, o, b) for o, b in obstacle_links]
-                pairs += [(child, c, robot, b) for b in robot_links if b not in gripper]
-        pairs += [(robot, a, robot, b) for a, b in self_pairs]
-        self._moving_rows = tuple((b.uid, i) for b, i in moving_rows)
-        self._static_rows = tuple((b.uid, i) for b, i in static_rows)
-        self._pairs = tuple(pairs)
-        self._pair_ids = [(a.uid, i, b.uid, j) for a, i, b, j in pairs]
-        # Bounds are a flat table of (low xyz, high xyz) rows. Per pair and axis,
-        # low_a - high_b and low_b - high_a: the largest of the six is the gap.
-        row_of = {(b.name, i): r for r, (b, i) in enumerate(moving_rows + static_rows)}
-        rows_a = 6 * np.array([row_of[a.name, i] for a, i, _, _ in pairs], dtype=np.intp)[:, None]
-        rows_b = 6 * np.array([row_of[b.name, j] for _, _, b, j in pairs], dtype=np.intp)[:, None]
-        axes = np.arange(3)
-        self._gap_minuends = np.hstack([rows_a + axes, rows_b + axes]).T.reshape(-1)
-        self._gap_subtrahends = np.hstack([rows_b + 3 + axes, rows_a + 3 + axes]).T.reshape(-1)
-
-    def _is_allowed(self, robot_link: int, other: Body, other_link: int) -> bool:
-        robot_name, other_name = self.robot.body.link_name(robot_link), other.link_name(other_link)
-        return any(a.allows(robot_name, other.name, other_name) for a in self.allowed)
-
-    def _bounds(self, rows: Sequence[tuple[int, int]]) -> FloatArray:
-        """Current axis-aligned bounds of the rows' links, flat: (low xyz, high xyz) per row."""
-        boxes = [p.getAABB(uid, link, physicsClientId=self._client) for uid, link in rows]
-        return np.fromiter(_flatten(_flatten(boxes)), dtype=float, count=6 * len(rows))
-
-    def _candidates(self, horizon: float, static_bounds: FloatArray) -> list[tuple[int, float]]:
-        """(pair, gap between its bounds) for the pairs whose bounds come within ``horizon``,
-        the most overlapping first."""
-        table = np.concatenate([self._bounds(self._moving_rows), static_bounds])
-        gaps = (table.take(self._gap_minuends) - table.take(self._gap_subtrahends)).reshape(6, -1).max(axis=0)
-        near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
-        near = near[np.argsort(gaps[near], kind="stable")]
-        return list(zip(near.tolist(), gaps[near].tolist(), strict=True))
+        self._checked = CheckedPairs(robot, self.obstacles, self.carried, self.allowed)
+        self._pairs = self._checked.pairs
+        self._pair_ids = self._checked.pair_ids
+        self._static_bounds = self._checked.static_bounds()
 
     # -- scene state ------------------------------------------------------------------------------
     def _read_state(self) -> tuple[RawBodyState, ...]:
@@ -303,12 +187,12 @@ class CollisionChecker:
         p.resetJointStatesMultiDof(uid, self._arm, [[float(v)] for v in q], physicsClientId=client)
         for placement in self._placements:
             placement.apply()
-        return static_bounds if along is None else self._bounds(self._static_rows)
+        return static_bounds if along is None else self._checked.static_bounds()
 
     def _distances(self, horizon: float, static_bounds: FloatArray) -> Iterator[float]:
         """Signed distances (within ``horizon``) of the checked pairs at the current state."""
         client = self._client
-        for k, _ in self._candidates(horizon, static_bounds):
+        for k, _ in self._checked.candidates(horizon, static_bounds):
             uid_a, link_a, uid_b, link_b = self._pair_ids[k]
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
                 yield float(point[8])
@@ -322,7 +206,7 @@ class CollisionChecker:
         threshold changes PyBullet's depth estimates of deep penetrations.)"""
         horizon, client = CLEARANCE_HORIZON, self._client
         best = horizon
-        for k, gap in self._candidates(horizon, static_bounds):
+        for k, gap in self._checked.candidates(horizon, static_bounds):
             if gap > best + BOUNDS_SLACK:
                 break
             uid_a, link_a, uid_b, link_b = self._pair_ids[k]
@@ -402,7 +286,7 @@ class CollisionChecker:
         horizon, names = max(self.margin, 0.0), []
         with self._in_snapshot(only_arm_moves=True):
             static_bounds = self._place(np.asarray(q, dtype=float))
-            for k, _ in self._candidates(horizon, static_bounds):
+            for k, _ in self._checked.candidates(horizon, static_bounds):
                 uid_a, link_a, uid_b, link_b = self._pair_ids[k]
                 points = p.getClosestPoints(
                     uid_a, uid_b, horizon, link_a, link_b, physicsClientId=self._client

@@ -1,0 +1,167 @@
+"""Which link pairs a ``CollisionChecker`` measures, and in which order: the pair table and
+its axis-aligned-bounds broadphase.
+
+Checked: every moving robot link against every other body's links, less the
+allowed contacts; every link of a body the robot carries against every other
+body and the robot's non-gripper links; robot links against each other when at
+least two movable joints separate them (links joined by one joint touch by
+construction).
+
+The pairs are listed once, link by link. Per configuration the moving links'
+axis-aligned bounds are read (``getAABB`` is exact and current after a joint
+reset) and only the pairs whose bounds come within the query distance are
+handed back (bounds ``g`` apart mean shapes at least ``g`` apart), the most
+overlapping first, so a checker measuring them in that order meets a collision
+early.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pybullet as p
+
+from kitchen_tamp.world.attachment import Attachment
+from kitchen_tamp.world.bodies import BASE_LINK, Body
+from kitchen_tamp.world.robot import Robot
+from kitchen_tamp.world.transforms import FloatArray
+
+BOUNDS_SLACK = 1e-6
+"""Pairs whose bounds are within the query distance plus this (m) are measured exactly."""
+
+LinkPair = tuple[Body, int, Body, int]
+"""(body, link index, other body, other link index)."""
+
+BoundsRow = tuple[int, int]
+"""(body uid, link index) whose axis-aligned bounds are one row of the bounds table."""
+
+_flatten = itertools.chain.from_iterable
+
+
+@dataclass(frozen=True)
+class AllowedContact:
+    """Robot links (all when None) that may touch ``body``'s link (all links when None).
+
+    Used for intended contact: the fingers around the box being grasped, the
+    gripper on the drawer handle.
+    """
+
+    body: str
+    link: str | None = None
+    robot_links: frozenset[str] | None = None
+
+    def allows(self, robot_link: str, body: str, link: str) -> bool:
+        """Whether this contact covers ``robot_link`` touching ``body``'s ``link``."""
+        return (
+            body == self.body
+            and (self.link is None or self.link == link)
+            and (self.robot_links is None or robot_link in self.robot_links)
+        )
+
+
+def _ancestry(body: Body, link: int) -> list[tuple[int, bool]]:
+    """(link, whether its joint is movable) from ``link`` up to the base, base excluded."""
+    parents = {j.index: (j.parent_index, j.movable) for j in body.joints}
+    chain = []
+    while link != BASE_LINK:
+        parent, movable = parents[link]
+        chain.append((link, movable))
+        link = parent
+    return chain
+
+
+def _movable_joints_between(body: Body, link_a: int, link_b: int) -> int:
+    """Number of movable joints on the kinematic chain joining two links of a body."""
+    chain_a, chain_b = _ancestry(body, link_a), _ancestry(body, link_b)
+    shared = {lnk for lnk, _ in chain_a} & {lnk for lnk, _ in chain_b}
+    return sum(movable for lnk, movable in chain_a + chain_b if lnk not in shared)
+
+
+@functools.lru_cache(maxsize=64)
+def _collision_links(body: Body) -> tuple[int, ...]:
+    """Indices of the links of ``body`` that have collision shapes."""
+    client = body.client
+    return tuple(i for i in body.link_indices if p.getCollisionShapeData(body.uid, i, physicsClientId=client))
+
+
+@functools.lru_cache(maxsize=16)
+def _robot_link_sets(body: Body, first_arm_joint: str) -> tuple[frozenset[int], tuple[tuple[int, int], ...]]:
+    """(links moved by the arm, self-collision pairs with >= 2 movable joints between them)."""
+    root = body.joint(first_arm_joint).index
+    moving = frozenset(i for i in body.link_indices if any(lnk == root for lnk, _ in _ancestry(body, i)))
+    pairs = itertools.combinations(_collision_links(body), 2)
+    return moving, tuple((a, b) for a, b in pairs if _movable_joints_between(body, a, b) >= 2)
+
+
+class CheckedPairs:
+    """The link pairs checked for a robot among obstacles while it carries some bodies, and
+    which of them to measure at the current state, most overlapping bounds first."""
+
+    def __init__(
+        self,
+        robot: Robot,
+        obstacles: Sequence[Body],
+        carried: Sequence[Attachment],
+        allowed: Iterable[AllowedContact] = (),
+    ) -> None:
+        self.robot = robot
+        self.allowed: tuple[AllowedContact, ...] = tuple(allowed)
+        self._client = robot.body.client
+        body = robot.body
+        moving, self_pairs = _robot_link_sets(body, robot.description.arm_joints[0])
+        gripper = {body.link_index(n) for n in robot.gripper_links}
+        robot_links = _collision_links(body)
+        obstacle_links = [(o, b) for o in obstacles for b in _collision_links(o)]
+        moving_rows = [(body, i) for i in robot_links if i in moving]
+        moving_rows += [(a.child, i) for a in carried for i in _collision_links(a.child)]
+        static_rows = [(body, i) for i in robot_links if i not in moving] + obstacle_links
+        pairs = [
+            (body, a, o, b)
+            for a in robot_links
+            if a in moving
+            for o, b in obstacle_links
+            if not self._is_allowed(a, o, b)
+        ]
+        for child in (a.child for a in carried):
+            for c in _collision_links(child):
+                pairs += [(child, c, o, b) for o, b in obstacle_links]
+                pairs += [(child, c, body, b) for b in robot_links if b not in gripper]
+        pairs += [(body, a, body, b) for a, b in self_pairs]
+        self.moving_rows: tuple[BoundsRow, ...] = tuple((b.uid, i) for b, i in moving_rows)
+        self.static_rows: tuple[BoundsRow, ...] = tuple((b.uid, i) for b, i in static_rows)
+        self.pairs: tuple[LinkPair, ...] = tuple(pairs)
+        self.pair_ids: list[tuple[int, int, int, int]] = [(a.uid, i, b.uid, j) for a, i, b, j in pairs]
+        # Bounds are a flat table of (low xyz, high xyz) rows. Per pair and axis,
+        # low_a - high_b and low_b - high_a: the largest of the six is the gap.
+        row_of = {(b.name, i): r for r, (b, i) in enumerate(moving_rows + static_rows)}
+        rows_a = 6 * np.array([row_of[a.name, i] for a, i, _, _ in pairs], dtype=np.intp)[:, None]
+        rows_b = 6 * np.array([row_of[b.name, j] for _, _, b, j in pairs], dtype=np.intp)[:, None]
+        axes = np.arange(3)
+        self._gap_minuends = np.hstack([rows_a + axes, rows_b + axes]).T.reshape(-1)
+        self._gap_subtrahends = np.hstack([rows_b + 3 + axes, rows_a + 3 + axes]).T.reshape(-1)
+
+    def _is_allowed(self, robot_link: int, other: Body, other_link: int) -> bool:
+        robot_name, other_name = self.robot.body.link_name(robot_link), other.link_name(other_link)
+        return any(a.allows(robot_name, other.name, other_name) for a in self.allowed)
+
+    def bounds(self, rows: Sequence[BoundsRow]) -> FloatArray:
+        """Current axis-aligned bounds of the rows' links, flat: (low xyz, high xyz) per row."""
+        boxes = [p.getAABB(uid, link, physicsClientId=self._client) for uid, link in rows]
+        return np.fromiter(_flatten(_flatten(boxes)), dtype=float, count=6 * len(rows))
+
+    def static_bounds(self) -> FloatArray:
+        """Current bounds of the links the arm does not move (read again only when they move)."""
+        return self.bounds(self.static_rows)
+
+    def candidates(self, horizon: float, static_bounds: FloatArray) -> list[tuple[int, float]]:
+        """(pair, gap between its bounds) for the pairs whose bounds come within ``horizon``,
+        the most overlapping first."""
+        table = np.concatenate([self.bounds(self.moving_rows), static_bounds])
+        gaps = (table.take(self._gap_minuends) - table.take(self._gap_subtrahends)).reshape(6, -1).max(axis=0)
+        near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
+        near = near[np.argsort(gaps[near], kind="stable")]
+        return list(zip(near.tolist(), gaps[near].tolist(), strict=True))
