@@ -15,7 +15,7 @@ from kitchen_tamp.kitchen import KitchenScene
 from kitchen_tamp.kitchen.show import overview_camera
 from kitchen_tamp.world import Image, render
 
-MAX_FRAMES = 160
+MAX_FRAMES = 120
 """Frames in a GIF at most; long runs are shown faster rather than longer."""
 MIN_FRAMES = 40
 """Frames in a GIF at least; short runs are sampled more finely."""
