@@ -28,8 +28,12 @@ lint: install
 
 bench: install
 	$(BIN)/python benchmarks/symbolic.py
-	$(BIN)/python benchmarks/motion.py
-	$(BIN)/python benchmarks/kitchen_runs.py
+	$(BIN)/python benchmarks/motion.py --query-set kitchen
+	$(BIN)/python benchmarks/collision.py
+	$(BIN)/python benchmarks/trajopt.py
+	$(BIN)/python benchmarks/bilevel.py
+	$(BIN)/python benchmarks/kitchen_runs.py --mode rrt
+	$(BIN)/python benchmarks/kitchen_runs.py --mode optimizes
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache
