@@ -66,6 +66,7 @@ class KitchenMap:
             {
                 "sugar": BoxSymbol(MODELS_DIR / "sugar.urdf"),
                 "spam": BoxSymbol(MODELS_DIR / "spam.urdf"),
+                "baguette": BoxSymbol(MODELS_DIR / "baguette.urdf"),
             }
         )
     )
