@@ -1,13 +1,29 @@
 """Symbolic planning speed against pyperplan and Fast Downward, in one process run.
 
-For each problem and each search, our whole run (parse + ground + search) is
-timed against pyperplan's (parse + ground + search) with the same search and
-heuristic, both in this process and in CPU seconds; the ratio is
-pyperplan / ours (above 1: we are faster). Fast Downward (the binary in the
-``up-fast-downward`` wheel) runs as a subprocess on the same files with the
-matching search, timed in CPU seconds of the child (translator included).
+For each problem and each search, our whole run (parse + translate + ground +
+search) is timed against pyperplan's (parse + ground + search) with the same
+search and heuristic, in CPU seconds, as the median of several repeats; the
+ratio is pyperplan / ours (above 1: we are faster). Our domain cache is
+cleared before every run, so each of our runs parses its domain like
+pyperplan does. Fast Downward (the binary in the ``up-fast-downward`` wheel)
+runs as a subprocess on the same files with the matching search, timed in CPU
+seconds of the child (its Python translator included), once.
 
-    python benchmarks/symbolic.py            # the full table
+Pairings (ours / pyperplan / Fast Downward):
+
+- ``bfs``: breadth-first / ``bfs`` / ``astar(blind())``
+- ``astar``: A* with h_max / ``astar`` + ``hmax`` / ``astar(hmax())``
+- ``ehc``: enforced hill climbing, h_FF, helpful actions first / ``ehs`` + ``hff``
+  with preferred operators (pruning, no fallback) / ``ehc(h, preferred=[h])``
+- ``gbfs``: greedy best-first, h_FF, preferred-operator queue / ``gbf`` + ``hff`` with
+  preferred operators (pruning) / ``eager_greedy([h], preferred=[h], boost=1000)``
+- ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
+  pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
+
+Afterwards a second table splits one run per problem into phases (parse domain,
+parse problem, translate, ground; pyperplan: parse, ground).
+
+    python benchmarks/symbolic.py            # the full table (about 20 minutes)
     python benchmarks/symbolic.py --quick    # small problems only
 """
 
@@ -18,14 +34,16 @@ import importlib.util
 import json
 import logging
 import math
+import os
 import re
 import resource
+import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -33,17 +51,46 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from pddl_generators import blocks_world, gripper, scaled_kitchen
 
-from kitchen_tamp.planning import load_task, plan, validate_plan
-from kitchen_tamp.planning.pddl_files import parse_domain
+from kitchen_tamp.planning import SearchResult, Task, plan, validate_plan
+from kitchen_tamp.planning.grounding import ground
+from kitchen_tamp.planning.loading import clear_domain_cache, domain_model
+from kitchen_tamp.planning.pddl_files import parse_problem
+from kitchen_tamp.planning.schemas import translate_problem
+from kitchen_tamp.planning.search.best_first import greedy_best_first_search
+from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
 
 REPO = Path(__file__).resolve().parents[1]
+MAX_REPEATS = 21
+"""Runs per row (median taken), fewer when one run is slow: see ``repeats``."""
+REPEAT_SECONDS = 2.0
 
-# our search name -> (pyperplan search, pyperplan heuristic, Fast Downward search string)
-PAIRINGS: dict[str, tuple[str, str | None, str]] = {
-    "bfs": ("bfs", None, "astar(blind())"),
-    "ehc": ("ehs", "hff", "ehc(ff())"),
-    "gbfs": ("gbf", "hff", "eager_greedy([ff()])"),
-    "astar": ("astar", "hmax", "astar(hmax())"),
+
+@dataclass(frozen=True)
+class Pairing:
+    pyperplan_search: str
+    pyperplan_heuristic: str | None
+    pyperplan_preferred: bool
+    fast_downward: str
+
+
+PAIRINGS: dict[str, Pairing] = {
+    "bfs": Pairing("bfs", None, False, "astar(blind())"),
+    "astar": Pairing("astar", "hmax", False, "astar(hmax())"),
+    "ehc": Pairing("ehs", "hff", True, "let(h, ff(), ehc(h, preferred=[h]))"),
+    "gbfs": Pairing("gbf", "hff", True, "let(h, ff(), eager_greedy([h], preferred=[h], boost=1000))"),
+    "ehc-plain": Pairing("ehs", "hff", False, "ehc(ff())"),
+    "gbfs-plain": Pairing("gbf", "hff", False, "eager_greedy([ff()])"),
+}
+
+OUR_SEARCHES: dict[str, Callable[[Task, float], SearchResult]] = {
+    "bfs": lambda task, budget: plan(task, "bfs", time_budget=budget),
+    "astar": lambda task, budget: plan(task, "astar", time_budget=budget),
+    "ehc": lambda task, budget: plan(task, "ehc", time_budget=budget),
+    "gbfs": lambda task, budget: plan(task, "gbfs", time_budget=budget),
+    "ehc-plain": lambda task, budget: enforced_hill_climbing(task, helpful_actions=False,
+                                                             time_budget=budget),
+    "gbfs-plain": lambda task, budget: greedy_best_first_search(task, preferred_operators=False,
+                                                                time_budget=budget),
 }
 
 
@@ -55,28 +102,29 @@ class Problem:
 
 
 def problems(quick: bool) -> list[Problem]:
-    all_searches = ("bfs", "ehc", "gbfs", "astar")
-    heuristic = ("ehc", "gbfs")
+    every = ("bfs", "astar", "ehc", "gbfs", "ehc-plain", "gbfs-plain")
+    guided = ("ehc", "gbfs")
     items = [
-        Problem("kitchen", lambda: _kitchen_files("problem.pddl"), all_searches),
-        Problem("kitchen-hard", lambda: _kitchen_files("problem_hard.pddl"), all_searches),
-        Problem("blocks-6", lambda: blocks_world(6, 1), all_searches),
-        Problem("gripper-6", lambda: gripper(6), all_searches),
-        Problem("kitchen-4b-5s-1d", lambda: scaled_kitchen(4, 5, 1, 0), all_searches),
+        Problem("kitchen", lambda: _kitchen_files("problem.pddl"), every),
+        Problem("kitchen-hard", lambda: _kitchen_files("problem_hard.pddl"), every),
+        Problem("blocks-6", lambda: blocks_world(6, 1), every),
+        Problem("gripper-6", lambda: gripper(6), every),
+        Problem("kitchen-4b-5s-1d", lambda: scaled_kitchen(4, 5, 1, 0), every),
     ]
     if not quick:
         items += [
-            Problem("blocks-8", lambda: blocks_world(8, 2), ("bfs", "ehc", "gbfs", "astar")),
-            Problem("blocks-12", lambda: blocks_world(12, 3), heuristic),
-            Problem("blocks-16", lambda: blocks_world(16, 4), heuristic),
-            Problem("blocks-20", lambda: blocks_world(20, 5), heuristic),
-            Problem("blocks-24", lambda: blocks_world(24, 6), heuristic),
-            Problem("gripper-10", lambda: gripper(10), ("bfs", "ehc", "gbfs", "astar")),
-            Problem("gripper-20", lambda: gripper(20), heuristic),
-            Problem("gripper-40", lambda: gripper(40), heuristic),
-            Problem("gripper-60", lambda: gripper(60), heuristic),
-            Problem("kitchen-8b-10s-2d", lambda: scaled_kitchen(8, 10, 2, 1), heuristic),
-            Problem("kitchen-16b-20s-3d", lambda: scaled_kitchen(16, 20, 3, 2), heuristic),
+            Problem("blocks-8", lambda: blocks_world(8, 2), every),
+            Problem("gripper-10", lambda: gripper(10), every),
+            Problem("blocks-12", lambda: blocks_world(12, 3), (*guided, "gbfs-plain")),
+            Problem("blocks-16", lambda: blocks_world(16, 4), guided),
+            Problem("blocks-20", lambda: blocks_world(20, 5), guided),
+            Problem("blocks-24", lambda: blocks_world(24, 6), guided),
+            Problem("gripper-20", lambda: gripper(20), (*guided, "ehc-plain", "gbfs-plain")),
+            Problem("gripper-40", lambda: gripper(40), guided),
+            Problem("gripper-60", lambda: gripper(60), guided),
+            Problem("kitchen-8b-10s-2d", lambda: scaled_kitchen(8, 10, 2, 1),
+                    (*guided, "ehc-plain", "gbfs-plain")),
+            Problem("kitchen-16b-20s-3d", lambda: scaled_kitchen(16, 20, 3, 2), guided),
         ]
     return items
 
@@ -95,18 +143,55 @@ class Run:
     length: int | None
     expanded: int | None
     note: str = ""
+    phases: dict[str, float] = field(default_factory=dict)
+    repeats: int = 0
+
+
+def repeats(first_run_seconds: float) -> int:
+    """How many more runs after the first: up to ``MAX_REPEATS`` in about ``REPEAT_SECONDS``."""
+    if first_run_seconds <= 0:
+        return MAX_REPEATS - 1
+    return max(0, min(MAX_REPEATS - 1, int(REPEAT_SECONDS / first_run_seconds)))
+
+
+def _median_phases(samples: list[dict[str, float]]) -> dict[str, float]:
+    return {key: statistics.median(s[key] for s in samples) for key in samples[0]}
+
+
+def run_ours_once(domain: Path, problem: Path, search: str,
+                  timeout: float) -> tuple[dict[str, float], SearchResult, Task]:
+    """One cold run (the domain cache cleared first), timed phase by phase in CPU seconds."""
+    clear_domain_cache()
+    clock = time.process_time
+    start = clock()
+    parsed_problem, source = parse_problem(problem)
+    parsed = clock()
+    model = domain_model(domain)
+    modelled = clock()
+    lifted = translate_problem(model, parsed_problem, source)
+    translated = clock()
+    task = ground(lifted)
+    grounded = clock()
+    result = OUR_SEARCHES[search](task, timeout)
+    searched = clock()
+    phases = {"parse problem": parsed - start, "parse+check domain": modelled - parsed,
+              "translate": translated - modelled, "ground": grounded - translated,
+              "search": searched - grounded, "total": searched - start}
+    return phases, result, task
 
 
 def run_ours(domain: Path, problem: Path, search: str, timeout: float) -> Run:
-    start = time.process_time()
-    task = load_task(problem, domain)
-    result = plan(task, search, time_budget=timeout)
-    seconds = time.process_time() - start
+    phases, result, task = run_ours_once(domain, problem, search, timeout)
     if result.plan is not None:
         assert validate_plan(task, result.plan).valid
     if not result.solved:
-        return Run(None, None, result.expanded, f"ours: {result.status}")
-    return Run(seconds, len(result.plan) if result.plan is not None else None, result.expanded)
+        return Run(None, None, result.expanded, f"ours: {result.status}", phases, 1)
+    samples = [phases]
+    for _ in range(repeats(phases["total"])):
+        samples.append(run_ours_once(domain, problem, search, timeout)[0])
+    median = _median_phases(samples)
+    length = len(result.plan) if result.plan is not None else None
+    return Run(median["total"], length, result.expanded, "", median, len(samples))
 
 
 class _ExpansionCounter(logging.Handler):
@@ -123,37 +208,56 @@ class _ExpansionCounter(logging.Handler):
 
 
 def pyperplan_worker(domain: str, problem: str, search: str) -> None:
-    """Run pyperplan (parse + ground + search) and print its CPU time, plan length and expansions."""
+    """Run pyperplan (parse + ground + search) repeatedly; print median CPU times, plan length, expansions."""
     from pyperplan import planner as pyperplan
 
-    search_name, heuristic_name, _ = PAIRINGS[search]
+    pairing = PAIRINGS[search]
     counter = _ExpansionCounter()
     root = logging.getLogger()
     root.handlers = [counter]
     root.setLevel(logging.INFO)
-    start = time.process_time()
-    parsed = pyperplan._parse(domain, problem)
-    task = pyperplan._ground(parsed)
-    heuristic: Any = pyperplan.HEURISTICS[heuristic_name](task) if heuristic_name else None
-    solution = pyperplan._search(task, pyperplan.SEARCHES[search_name], heuristic)
-    seconds = time.process_time() - start
-    print(json.dumps({"seconds": seconds, "length": None if solution is None else len(solution),
+    samples: list[dict[str, float]] = []
+    solution: Any = None
+    while not samples or len(samples) <= repeats(samples[0]["total"]):
+        clock = time.process_time
+        start = clock()
+        parsed = pyperplan._parse(domain, problem)
+        parsed_at = clock()
+        task = pyperplan._ground(parsed)
+        grounded_at = clock()
+        heuristic: Any = (pyperplan.HEURISTICS[pairing.pyperplan_heuristic](task)
+                          if pairing.pyperplan_heuristic else None)
+        solution = pyperplan._search(task, pyperplan.SEARCHES[pairing.pyperplan_search], heuristic,
+                                     use_preferred_ops=pairing.pyperplan_preferred)
+        end = clock()
+        samples.append({"parse": parsed_at - start, "ground": grounded_at - parsed_at,
+                        "search": end - grounded_at, "total": end - start})
+        if solution is None:
+            break
+    print(json.dumps({"phases": _median_phases(samples), "repeats": len(samples),
+                      "length": None if solution is None else len(solution),
                       "expanded": counter.expanded}))
 
 
 def run_pyperplan(domain: Path, problem: Path, search: str, timeout: float) -> Run:
     """pyperplan in a child process, so that a run without a time limit of its own can be cut off."""
     try:
+        # pyperplan's grounding iterates over sets, so its operator order (and with
+        # it the search) depends on the hash seed: fix it for reproducible rows.
         completed = subprocess.run(
             [sys.executable, __file__, "--pyperplan-worker", str(domain), str(problem), search],
-            capture_output=True, text=True, timeout=timeout)
+            capture_output=True, text=True, timeout=timeout + 2 * REPEAT_SECONDS + 5,
+            env={**os.environ, "PYTHONHASHSEED": "0"})
     except subprocess.TimeoutExpired:
         return Run(None, None, None, f"pyperplan >{timeout:g} s")
     if completed.returncode != 0:
         return Run(None, None, None, f"pyperplan exit {completed.returncode}")
     data = json.loads(completed.stdout.strip().splitlines()[-1])
-    return Run(data["seconds"], data["length"], data["expanded"],
-               "" if data["length"] is not None else "pyperplan: no plan")
+    phases = data["phases"]
+    if phases["total"] > timeout:
+        return Run(None, None, None, f"pyperplan >{timeout:g} s")
+    return Run(phases["total"] if data["length"] is not None else None, data["length"], data["expanded"],
+               "" if data["length"] is not None else "pyperplan: no plan", phases, data["repeats"])
 
 
 def fast_downward_script() -> Path | None:
@@ -172,7 +276,7 @@ def run_fast_downward(script: Path, domain: Path, problem: Path, search: str, wo
     try:
         completed = subprocess.run(
             [sys.executable, str(script), "--plan-file", str(workdir / "fd.plan"), str(domain),
-             str(problem), "--search", PAIRINGS[search][2]],
+             str(problem), "--search", PAIRINGS[search].fast_downward],
             capture_output=True, text=True, cwd=workdir, timeout=timeout)
     except subprocess.TimeoutExpired:
         return Run(None, None, None, f"FD >{timeout:g} s")
@@ -182,7 +286,7 @@ def run_fast_downward(script: Path, domain: Path, problem: Path, search: str, wo
     expanded = re.findall(r"Expanded (\d+) state", completed.stdout)
     return Run(seconds, int(length.group(1)) if length else None,
                int(expanded[-1]) if expanded else None,
-               "" if length else f"exit {completed.returncode}")
+               "" if length else f"FD exit {completed.returncode}")
 
 
 def _fmt(value: float | int | None, digits: int = 3) -> str:
@@ -191,11 +295,41 @@ def _fmt(value: float | int | None, digits: int = 3) -> str:
     return f"{value:.{digits}f}" if isinstance(value, float) else str(value)
 
 
+def _ratio(ours: Run, peer: Run, timeout: float) -> tuple[str, float | None]:
+    if ours.seconds and peer.seconds:
+        ratio = peer.seconds / ours.seconds
+        return f"{ratio:.1f}", ratio
+    if ours.seconds and peer.note.startswith("pyperplan >"):
+        return f">{timeout / ours.seconds:.0f}", None
+    return "-", None
+
+
+def _phase_table(rows: list[tuple[str, Run, Run]]) -> None:
+    print("\nphases of one run (median CPU ms; ours cold: domain parsed and checked every run)")
+    header = (f"{'problem':20} {'search':10} {'parse dom+prob':>15} {'translate':>9} {'ground':>7} "
+              f"{'search':>8} {'total':>8} | {'pp parse':>8} {'pp ground':>9} {'pp search':>9} "
+              f"{'pp total':>8}")
+    print(header)
+    print("-" * len(header))
+    for name, ours, peer in rows:
+        o, p = ours.phases, peer.phases
+
+        def ms(phases: dict[str, float], key: str) -> str:
+            return f"{1000 * phases[key]:.2f}" if key in phases else "-"
+
+        parse = (f"{1000 * o['parse+check domain']:.2f}+{1000 * o['parse problem']:.2f}"
+                 if o else "-")
+        print(f"{name:31} {parse:>15} {ms(o, 'translate'):>9} {ms(o, 'ground'):>7} "
+              f"{ms(o, 'search'):>8} {ms(o, 'total'):>8} | {ms(p, 'parse'):>8} {ms(p, 'ground'):>9} "
+              f"{ms(p, 'search'):>9} {ms(p, 'total'):>8}")
+
+
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small problems only")
     parser.add_argument("--no-fd", action="store_true", help="skip Fast Downward")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
+    parser.add_argument("--only", help="comma-separated problem names to run")
     parser.add_argument("--pyperplan-worker", nargs=3, metavar=("DOMAIN", "PROBLEM", "SEARCH"),
                         help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -203,20 +337,25 @@ def main() -> int:
         pyperplan_worker(*args.pyperplan_worker)
         return 0
     logging.getLogger().setLevel(logging.WARNING)
-    # Warm up like an import: build the Lark parsers and run every code path once.
-    parse_domain(REPO / "pddl" / "domain.pddl")
-    for search in PAIRINGS:
-        plan(load_task(REPO / "pddl" / "problem.pddl"), search)
     fd = None if args.no_fd else fast_downward_script()
+    selected = [p for p in problems(args.quick) if not args.only or p.name in args.only.split(",")]
 
-    header = (f"{'problem':20} {'search':6} {'ours s':>8} {'pyperplan s':>11} {'ratio':>7} "
-              f"{'FD s':>7} {'len ours/pp/FD':>15} {'expanded ours/pp/FD':>22}")
+    header = (f"{'problem':20} {'search':10} {'ours s':>8} {'pp s':>8} {'ratio':>6} {'FD s':>7} "
+              f"{'len ours/pp/FD':>15} {'expanded ours/pp/FD':>22}")
     print(header)
     print("-" * len(header))
-    ratios: list[float] = []
+    ratios: list[tuple[str, float]] = []
+    phase_rows: list[tuple[str, Run, Run]] = []
+    failures: list[str] = []  # rows pyperplan solved and we did not
     with tempfile.TemporaryDirectory() as tmp:
         workdir = Path(tmp)
-        for item in problems(args.quick):
+        # Warm up like an import: build the Lark parsers and run every search once.
+        warm_domain, warm_problem = workdir / "warm-domain.pddl", workdir / "warm.pddl"
+        warm_domain.write_text(_kitchen_files("problem.pddl")[0])
+        warm_problem.write_text(_kitchen_files("problem.pddl")[1])
+        for search in OUR_SEARCHES:
+            run_ours_once(warm_domain, warm_problem, search, args.timeout)
+        for item in selected:
             domain_text, problem_text = item.make()
             domain, problem = workdir / f"{item.name}-domain.pddl", workdir / f"{item.name}.pddl"
             domain.write_text(domain_text)
@@ -226,20 +365,29 @@ def main() -> int:
                 peer = run_pyperplan(domain, problem, search, args.timeout)
                 fd_run = (run_fast_downward(fd, domain, problem, search, workdir, args.timeout)
                           if fd else None)
-                ratio = (peer.seconds / ours.seconds if ours.seconds and peer.seconds else None)
+                shown, ratio = _ratio(ours, peer, args.timeout)
                 if ratio is not None:
-                    ratios.append(ratio)
-                lengths = "/".join(_fmt(r.length) for r in (ours, peer, fd_run) if r is not None)
-                expanded = "/".join(_fmt(r.expanded) for r in (ours, peer, fd_run) if r is not None)
-                print(f"{item.name:20} {search:6} {_fmt(ours.seconds):>8} {_fmt(peer.seconds):>11} "
-                      f"{_fmt(ratio, 1):>7} {_fmt(fd_run.seconds if fd_run else None):>7} "
-                      f"{lengths:>15} {expanded:>22} "
-                      f"{' '.join(n for n in (ours.note, peer.note, fd_run.note if fd_run else '') if n)}",
-                      flush=True)
+                    ratios.append((f"{item.name} {search}", ratio))
+                runs = [r for r in (ours, peer, fd_run) if r is not None]
+                lengths = "/".join(_fmt(r.length) for r in runs)
+                expanded = "/".join(_fmt(r.expanded) for r in runs)
+                notes = " ".join(r.note for r in runs if r.note)
+                print(f"{item.name:20} {search:10} {_fmt(ours.seconds):>8} {_fmt(peer.seconds):>8} "
+                      f"{shown:>6} {_fmt(fd_run.seconds if fd_run else None):>7} {lengths:>15} "
+                      f"{expanded:>22} {notes}", flush=True)
+                if search == item.searches[0]:
+                    phase_rows.append((f"{item.name:20} {search:10}", ours, peer))
+                if ours.seconds is None and peer.seconds is not None:
+                    failures.append(f"{item.name} {search}")
     if ratios:
-        geometric = math.exp(sum(math.log(r) for r in ratios) / len(ratios))
-        print(f"\nspeed-up over pyperplan (CPU time, parse + ground + search): geometric mean "
-              f"{geometric:.1f}x, minimum {min(ratios):.1f}x over {len(ratios)} runs")
+        values = [r for _, r in ratios]
+        geometric = math.exp(sum(math.log(r) for r in values) / len(values))
+        slower = [name for name, r in ratios if r < 1.0] + failures
+        print(f"\nspeed-up over pyperplan (median CPU time, parse + ground + search): geometric mean "
+              f"{geometric:.1f}x, minimum {min(values):.1f}x, at least 5x on "
+              f"{sum(r >= 5 for r in values)} of {len(values)} rows where both solved; "
+              f"slower on: {', '.join(slower) if slower else 'none'}")
+    _phase_table(phase_rows)
     return 0
 
 

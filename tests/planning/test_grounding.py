@@ -4,7 +4,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from kitchen_tamp.planning import load_task
+from kitchen_tamp.planning import Task, load_task
 from tests.planning.conftest import DATA, KITCHEN, REPO, data_task
 
 
@@ -81,3 +81,43 @@ def test_ground_action_order_does_not_depend_on_hash_seeds() -> None:
         for seed in ("1", "2", "3")
     }
     assert len(outputs) == 1
+
+
+def _generated_problems() -> dict[str, tuple[str, str]]:
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    from pddl_generators import blocks_world, gripper, scaled_kitchen
+
+    return {"blocks": blocks_world(4, 1), "gripper": gripper(3), "kitchen": scaled_kitchen(3, 4, 2, 0)}
+
+
+def test_grounding_finds_exactly_the_relaxed_reachable_bindings(tmp_path: Path) -> None:
+    from kitchen_tamp.planning.grounding import ground
+    from kitchen_tamp.planning.pddl_files import parse_domain, parse_problem
+    from kitchen_tamp.planning.schemas import translate
+    from tests.planning.brute_force import naive_ground_action_names
+    from tests.planning.conftest import SMALL_TASKS
+
+    pairs = [(Path(p), Path(d)) for p, d in SMALL_TASKS.values()]
+    pairs += [(DATA / "delivery_unsolvable.pddl", DATA / "delivery_domain.pddl")]
+    for name, (domain_text, problem_text) in _generated_problems().items():
+        (tmp_path / f"{name}-domain.pddl").write_text(domain_text)
+        (tmp_path / f"{name}.pddl").write_text(problem_text)
+        pairs.append((tmp_path / f"{name}.pddl", tmp_path / f"{name}-domain.pddl"))
+    for problem, domain in pairs:
+        parsed_domain, dsrc = parse_domain(domain)
+        parsed_problem, psrc = parse_problem(problem)
+        lifted = translate(parsed_domain, parsed_problem, dsrc, psrc)
+        task = ground(lifted)
+        assert {(a.name, a.args) for a in task.actions} == naive_ground_action_names(lifted), problem.name
+
+
+def test_successor_table_yields_exactly_the_applicable_actions(small_task: Task) -> None:
+    from tests.planning.brute_force import reachable_states
+
+    for state in reachable_states(small_task):
+        expected = [a for a in small_task.actions if a.applicable(state)]
+        listed = list(small_task.applicable_actions(state))
+        assert sorted(map(str, listed)) == sorted(map(str, expected))
+        assert [(a, a.apply(state)) for a in listed] == list(small_task.successors(state))
+        for action in listed:
+            assert small_task.action_between(state, action.apply(state)).apply(state) == action.apply(state)

@@ -3,6 +3,7 @@ from __future__ import annotations
 from kitchen_tamp.planning import RelaxedExploration, Task
 from kitchen_tamp.planning.heuristics import INFINITY
 from tests.planning.brute_force import goal_distances, reachable_states
+from tests.planning.conftest import data_task
 
 
 def test_h_max_is_admissible_and_below_h_add(small_task: Task) -> None:
@@ -43,3 +44,34 @@ def test_relaxed_plan_reaches_the_goal_when_deletes_are_ignored(small_task: Task
             state |= small_task.actions[i].add
             remaining.discard(i)
     assert state & small_task.goal == small_task.goal
+
+
+def test_relaxed_plan_takes_the_achiever_with_the_lowest_difficulty() -> None:
+    task = data_task("achiever_problem.pddl", "achiever_domain.pddl")
+    exploration = RelaxedExploration(task)
+    relaxed = exploration.relaxed_plan(task.initial_state)
+    assert relaxed is not None
+    assert sorted(str(task.actions[i]) for i in relaxed) == ["easy-way", "make-c"]
+    assert exploration.h_ff(task.initial_state) == 2
+
+
+def test_helpful_actions_are_the_applicable_actions_of_the_relaxed_plan(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task)
+    for state in reachable_states(small_task):
+        h, helpful = exploration.h_ff_helpful(state)
+        assert h == exploration.h_ff(state)
+        relaxed = set(exploration.relaxed_plan(state) or ())
+        chosen = {i for i in range(len(small_task.actions)) if helpful >> i & 1}
+        assert chosen == {i for i in relaxed if small_task.actions[i].pre & state
+                          == small_task.actions[i].pre}
+        # A relaxed plan can always start somewhere, so only goals and dead ends have none.
+        assert bool(chosen) == (0 < h < INFINITY)
+
+
+def test_helpful_actions_can_lead_into_a_dead_end() -> None:
+    task = data_task("helpful_trap_problem.pddl", "helpful_trap_domain.pddl")
+    exploration = RelaxedExploration(task)
+    _, helpful = exploration.h_ff_helpful(task.initial_state)
+    assert [str(a) for i, a in enumerate(task.actions) if helpful >> i & 1] == ["commit"]
+    committed = next(a for a in task.actions if a.name == "commit").apply(task.initial_state)
+    assert exploration.h_ff(committed) == INFINITY

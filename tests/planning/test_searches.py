@@ -106,3 +106,42 @@ def test_unknown_planner_is_rejected() -> None:
     task = data_task("blocks_sussman.pddl", "blocks_domain.pddl")
     with pytest.raises(ValueError, match="unknown planner"):
         plan(task, "dijkstra")
+
+
+def test_enforced_hill_climbing_retries_with_every_action_when_helpful_ones_fail() -> None:
+    task = data_task("helpful_trap_problem.pddl", "helpful_trap_domain.pddl")
+    result = plan(task, "ehc")
+    assert result.status == "solved", result.message
+    assert [str(a) for a in result.plan or ()] == ["prepare", "finish-prepared"]
+
+
+@pytest.mark.parametrize("guided", [True, False])
+def test_greedy_searches_with_and_without_helpful_actions_find_valid_plans(
+        small_task: Task, guided: bool) -> None:
+    from kitchen_tamp.planning import enforced_hill_climbing, greedy_best_first_search
+
+    greedy = greedy_best_first_search(small_task, preferred_operators=guided)
+    assert greedy.status == "solved" and greedy.plan is not None
+    assert validate_plan(small_task, greedy.plan).valid
+    climbing = enforced_hill_climbing(small_task, helpful_actions=guided)
+    assert climbing.status in ("solved", "failed")  # "failed": a dead end, as in the trap
+    if climbing.plan is not None:
+        assert validate_plan(small_task, climbing.plan).valid
+
+
+def test_helpful_actions_cut_enforced_hill_climbing_on_blocks() -> None:
+    from kitchen_tamp.planning import enforced_hill_climbing
+
+    task = data_task("blocks_tower4.pddl", "blocks_domain.pddl")
+    guided = enforced_hill_climbing(task)
+    plain = enforced_hill_climbing(task, helpful_actions=False)
+    assert guided.solved and plain.solved
+    assert guided.evaluated <= plain.evaluated
+
+
+def test_preferred_operator_search_proves_unsolvability_too() -> None:
+    from kitchen_tamp.planning import greedy_best_first_search
+
+    task = data_task("delivery_unsolvable.pddl", "delivery_domain.pddl")
+    result = greedy_best_first_search(task, preferred_operators=True)
+    assert result.status == "unsolvable"

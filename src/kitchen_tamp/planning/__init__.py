@@ -8,8 +8,8 @@ Typical use::
 """
 
 from kitchen_tamp.planning.errors import PlanningInputError
-from kitchen_tamp.planning.grounding import load_task
 from kitchen_tamp.planning.heuristics import RelaxedExploration, make_heuristic
+from kitchen_tamp.planning.loading import load_task
 from kitchen_tamp.planning.search.best_first import astar_search, greedy_best_first_search
 from kitchen_tamp.planning.search.breadth_first import breadth_first_search
 from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing

@@ -69,7 +69,8 @@ def resolve_problem_path(problem: str | Path) -> Path:
     return candidate if candidate.exists() else path
 
 
-def _read(path: Path, what: str) -> str:
+def read_pddl(path: Path, what: str) -> str:
+    """The text of a PDDL file; a missing or unreadable file is an input error naming ``what``."""
     if not path.exists():
         raise PlanningInputError(f"{what} file not found", path)
     if path.is_dir():
@@ -113,8 +114,7 @@ def _problem_parser() -> ProblemParser:
     return ProblemParser()
 
 
-def _parse(path: Path, what: str, parser: Callable[[str], T]) -> tuple[T, PddlSource]:
-    text = _read(path, what)
+def _parse(path: Path, text: str, what: str, parser: Callable[[str], T]) -> tuple[T, PddlSource]:
     limit = getattr(sys, "tracebacklimit", None)
     try:
         parsed = parser(text)
@@ -131,9 +131,14 @@ def _parse(path: Path, what: str, parser: Callable[[str], T]) -> tuple[T, PddlSo
 
 def parse_domain(path: Path) -> tuple[Domain, PddlSource]:
     """Parse a domain file; a syntax error names file, line and column."""
-    return _parse(path, "domain", _domain_parser())
+    return parse_domain_text(path, read_pddl(path, "domain"))
+
+
+def parse_domain_text(path: Path, text: str) -> tuple[Domain, PddlSource]:
+    """Parse a domain already read from ``path``; a syntax error names file, line and column."""
+    return _parse(path, text, "domain", _domain_parser())
 
 
 def parse_problem(path: Path) -> tuple[Problem, PddlSource]:
     """Parse a problem file; a syntax error names file, line and column."""
-    return _parse(path, "problem", _problem_parser())
+    return _parse(path, read_pddl(path, "problem"), "problem", _problem_parser())

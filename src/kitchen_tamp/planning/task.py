@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 Atom = tuple[str, ...]
 """A ground atom as (predicate, arg, ...), e.g. ``("boxOn", "sugar", "stove")``."""
@@ -57,6 +58,20 @@ class GroundAction:
     pre_ids: tuple[int, ...] = field(compare=False)
     add_ids: tuple[int, ...] = field(compare=False)
 
+    @classmethod
+    def unchecked(cls, name: str, args: tuple[str, ...], pre: int, pre_neg: int, add: int, delete: int,
+                  pre_ids: tuple[int, ...], add_ids: tuple[int, ...]) -> GroundAction:
+        """The same action as the constructor builds, in half the time.
+
+        A frozen dataclass's ``__init__`` sets each field through
+        ``object.__setattr__``; grounding builds thousands of actions, so it
+        fills the instance dictionary in one call instead.
+        """
+        action = object.__new__(cls)
+        action.__dict__.update(name=name, args=args, pre=pre, pre_neg=pre_neg, add=add, delete=delete,
+                               pre_ids=pre_ids, add_ids=add_ids)
+        return action
+
     def __str__(self) -> str:
         return " ".join((self.name, *self.args))
 
@@ -70,6 +85,23 @@ class GroundAction:
 
     def apply(self, state: State) -> State:
         return (state & ~self.delete) | self.add
+
+
+ActionEntry = tuple[int, int, int, int, int]
+"""One action as the searches see it: (pre, pre_neg, ~delete, add, index into ``Task.actions``)."""
+
+
+class SuccessorTable(NamedTuple):
+    """Actions grouped for fast successor generation.
+
+    ``by_key`` maps the bit of an atom (``1 << id``) to the actions keyed by it,
+    ``key_mask`` is the union of those bits and ``unconditional`` holds the
+    actions without positive preconditions. A child is ``(state & keep) | add``.
+    """
+
+    key_mask: int
+    by_key: dict[int, tuple[ActionEntry, ...]]
+    unconditional: tuple[ActionEntry, ...]
 
 
 @dataclass(frozen=True)
@@ -114,44 +146,67 @@ class Task:
             and not state & self.goal_neg
         )
 
-    def _successor_index(self) -> tuple[int, dict[int, tuple[GroundAction, ...]], tuple[GroundAction, ...]]:
-        """Actions keyed by their least common precondition atom, built once.
+    def successor_table(self) -> SuccessorTable:
+        """Actions keyed by their least common precondition atom, built once per task.
 
-        A state then only looks at the actions whose key atom it contains,
-        instead of testing every action.
+        A state then only tests the actions whose key atom it contains, instead
+        of every action. The searches loop over this table directly; see
+        ``SuccessorTable`` for the layout and ``successors`` for the loop.
         """
-        index = self.__dict__.get("_successor_index_cache")
-        if index is None:
+        table = self.__dict__.get("_successor_table")
+        if table is None:
             uses = [0] * len(self.atoms)
             for action in self.actions:
                 for atom in action.pre_ids:
                     uses[atom] += 1
-            keyed: dict[int, list[GroundAction]] = {}
-            unconditional: list[GroundAction] = []
-            for action in self.actions:
+            keyed: dict[int, list[ActionEntry]] = {}
+            unconditional: list[ActionEntry] = []
+            for index, action in enumerate(self.actions):
+                entry = (action.pre, action.pre_neg, ~action.delete, action.add, index)
                 if action.pre_ids:
                     key = min(action.pre_ids, key=lambda atom: (uses[atom], atom))
-                    keyed.setdefault(key, []).append(action)
+                    keyed.setdefault(1 << key, []).append(entry)
                 else:
-                    unconditional.append(action)
-            index = (mask_of(keyed), {k: tuple(v) for k, v in keyed.items()}, tuple(unconditional))
-            object.__setattr__(self, "_successor_index_cache", index)
-        return index
+                    unconditional.append(entry)
+            table = SuccessorTable(mask_of(k.bit_length() - 1 for k in keyed),
+                                   {k: tuple(v) for k, v in keyed.items()}, tuple(unconditional))
+            object.__setattr__(self, "_successor_table", table)
+        return table
 
     def applicable_actions(self, state: State) -> Iterator[GroundAction]:
         """The actions applicable in ``state``, in a fixed order for a given state."""
-        key_mask, keyed, unconditional = self._successor_index()
-        for action in unconditional:
-            if not state & action.pre_neg:
-                yield action
-        for atom in bits(state & key_mask):
-            for action in keyed[atom]:
-                if state & action.pre == action.pre and not state & action.pre_neg:
-                    yield action
+        actions = self.actions
+        for _, index in self.successor_indices(state):
+            yield actions[index]
 
     def successors(self, state: State) -> Iterator[tuple[GroundAction, State]]:
-        for action in self.applicable_actions(state):
-            yield action, (state & ~action.delete) | action.add
+        actions = self.actions
+        for child, index in self.successor_indices(state):
+            yield actions[index], child
+
+    def successor_indices(self, state: State) -> list[tuple[State, int]]:
+        """``(child, action index)`` for each applicable action, in the order of ``successors``."""
+        key_mask, keyed, unconditional = self.successor_table()
+        out = [((state & keep) | add, index) for pre, neg, keep, add, index in unconditional
+               if not state & neg]
+        keys = state & key_mask
+        while keys:
+            low = keys & -keys
+            keys ^= low
+            for pre, neg, keep, add, index in keyed[low]:
+                if state & pre == pre and not state & neg:
+                    out.append(((state & keep) | add, index))
+        return out
+
+    def action_between(self, state: State, child: State) -> GroundAction:
+        """The first action (in ``successors`` order) that leads from ``state`` to ``child``.
+
+        Searches store only parent states; plans are read back with this.
+        """
+        for action, successor in self.successors(state):
+            if successor == child:
+                return action
+        raise ValueError("no action leads from the given state to the given child")
 
     def state_atoms(self, state: State) -> frozenset[Atom]:
         """The fluent atoms true in ``state``."""

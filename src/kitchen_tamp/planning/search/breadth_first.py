@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-from collections import deque
-
-from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, extract_plan
-from kitchen_tamp.planning.task import GroundAction, State, Task
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, StateParents, plan_to
+from kitchen_tamp.planning.task import State, Task
 
 
 def breadth_first_search(
@@ -14,33 +12,55 @@ def breadth_first_search(
     """Shortest plan by breadth-first search with duplicate detection.
 
     The goal test happens when a state is generated, which is still optimal for
-    unit costs and saves expanding the last layer.
+    unit costs and saves expanding the last layer. Successors are generated
+    inline from the task's successor table (this loop is the whole cost of a
+    blind search), in the same order as ``Task.successors``.
     """
     budget = SearchBudget(time_budget, max_expansions)
     root = task.initial_state
-    parents: dict[State, tuple[State, GroundAction] | None] = {root: None}
+    parents: dict[State, State | None] = {root: None}
     if task.is_goal(root):
         return SearchResult("bfs", "solved", (), 0, 1, 0, budget.elapsed())
     if task.trivially_unsolvable:
         return _unsolvable(task, 0, 1, budget)
-    frontier = deque([root])
+    key_mask, by_key, unconditional = task.successor_table()
+    goal, goal_neg = task.goal, task.goal_neg
+    layer = [root]
     expanded = 0
-    is_goal = task.is_goal
-    while frontier:
-        if budget.exhausted(expanded):
-            return SearchResult("bfs", "budget", None, expanded, len(parents), 0, budget.elapsed(),
-                                budget.describe())
-        state = frontier.popleft()
-        expanded += 1
-        for action, child in task.successors(state):
-            if child in parents:
-                continue
-            parents[child] = (state, action)
-            if is_goal(child):
-                plan = extract_plan(parents, child)
-                return SearchResult("bfs", "solved", plan, expanded, len(parents), 0, budget.elapsed())
-            frontier.append(child)
+    check_at = 0.0
+    while layer:
+        next_layer: list[State] = []
+        for state in layer:
+            if expanded >= check_at:
+                if budget.exhausted(expanded):
+                    return SearchResult("bfs", "budget", None, expanded, len(parents), 0,
+                                        budget.elapsed(), budget.describe())
+                check_at = budget.next_check(expanded)
+            expanded += 1
+            keys = state & key_mask
+            group = unconditional
+            while True:
+                for pre, neg, keep, add, _ in group:
+                    if state & pre == pre and not state & neg:
+                        child = (state & keep) | add
+                        if child not in parents:
+                            parents[child] = state
+                            if child & goal == goal and not child & goal_neg:
+                                return _solved(task, parents, child, expanded, budget)
+                            next_layer.append(child)
+                if not keys:
+                    break
+                low = keys & -keys
+                keys ^= low
+                group = by_key[low]
+        layer = next_layer
     return _unsolvable(task, expanded, len(parents), budget)
+
+
+def _solved(task: Task, parents: StateParents, goal_state: State, expanded: int,
+            budget: SearchBudget) -> SearchResult:
+    return SearchResult("bfs", "solved", plan_to(task, parents, goal_state), expanded, len(parents), 0,
+                        budget.elapsed())
 
 
 def _unsolvable(task: Task, expanded: int, generated: int, budget: SearchBudget) -> SearchResult:
@@ -54,4 +74,3 @@ def unsolvable_message(task: Task, reachable_states: int) -> str:
         names = " ".join(sorted("(" + " ".join(a) + ")" for a in task.unreachable_goal_atoms))
         return f"unsolvable: goal atom(s) {names} can never become true"
     return f"unsolvable: none of the {reachable_states} reachable states satisfies the goal"
-

@@ -1,4 +1,4 @@
-"""Enforced hill climbing with h_FF (Hoffmann and Nebel's FF planner).
+"""Enforced hill climbing with h_FF and helpful actions (Hoffmann and Nebel's FF planner).
 
 From the current state, a breadth-first search looks for any state with a
 strictly lower h_FF, and the climb jumps there. As in the class project we
@@ -7,69 +7,144 @@ first-out: among the improving children of an expanded state, the one with the
 lowest h wins, and among those the one generated first. This avoids
 flip-flopping between equally good actions.
 
-EHC is incomplete: a breadth-first search that exhausts the states reachable
-from a plateau without improving means a dead end, and the search says so
-instead of looping.
+As in FF, the breadth-first search first only follows each state's *helpful
+actions* (the actions of its relaxed plan that are applicable in it, see
+``heuristics``); only when that search exhausts its states without improving
+is it repeated with every action. This is what keeps plateaus small (blocks
+world with 12 blocks: 90 expansions instead of more than 100 000).
+
+EHC is incomplete: a breadth-first search over every action that exhausts the
+states reachable from a plateau without improving means a dead end, and the
+search says so instead of looping.
 """
 
 from __future__ import annotations
 
 from collections import deque
 
-from kitchen_tamp.planning.heuristics import INFINITY, HeuristicName, make_heuristic
+from kitchen_tamp.planning.heuristics import (
+    INFINITY,
+    HelpfulHeuristic,
+    HeuristicName,
+    RelaxedExploration,
+    make_heuristic,
+)
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
-from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, extract_plan
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import GroundAction, State, Task
+
+ALL_ACTIONS = -1
+"""The helpful-action bitset that allows every action (all bits set)."""
 
 
 def enforced_hill_climbing(
-    task: Task, *, heuristic: HeuristicName = "hff", time_budget: float | None = None,
-    max_expansions: int | None = None,
+    task: Task, *, heuristic: HeuristicName = "hff", helpful_actions: bool = True,
+    time_budget: float | None = None, max_expansions: int | None = None,
 ) -> SearchResult:
+    """Enforced hill climbing; ``helpful_actions`` (h_FF only): each plateau over helpful actions first."""
     budget = SearchBudget(time_budget, max_expansions)
-    h = make_heuristic(task, heuristic)
+    evaluate: HelpfulHeuristic
+    if heuristic == "hff" and helpful_actions:
+        evaluate = RelaxedExploration(task).h_ff_helpful
+    else:
+        h = make_heuristic(task, heuristic)
+
+        def evaluate(state: State) -> tuple[float, int]:
+            return h(state), ALL_ACTIONS
+
+    return _climb(task, evaluate, budget, prune=heuristic == "hff" and helpful_actions)
+
+
+class _Counts:
+    """Expansions, generated and evaluated states over the whole climb."""
+
+    def __init__(self) -> None:
+        self.expanded, self.generated, self.evaluated = 0, 1, 1
+
+
+class _OutOfBudget(Exception):
+    """The time or expansion budget ran out during a plateau search."""
+
+
+Improvement = tuple[State, float, int, dict[State, State | None]]
+"""A better state, its h and helpful actions, and the parent pointers leading to it."""
+
+
+def _climb(task: Task, evaluate: HelpfulHeuristic, budget: SearchBudget, prune: bool) -> SearchResult:
+    counts = _Counts()
     state = task.initial_state
-    h_state = h(state)
-    evaluated, expanded, generated = 1, 0, 1
+    h_state, helpful = evaluate(state)
     plan: list[GroundAction] = []
     if h_state == INFINITY:
         message = (unsolvable_message(task, 1) if task.trivially_unsolvable
                    else "unsolvable: the goal is unreachable even ignoring delete effects")
         return SearchResult("ehc", "unsolvable", None, 0, 1, 1, budget.elapsed(), message)
-    while not task.is_goal(state):
-        parents: dict[State, tuple[State, GroundAction] | None] = {state: None}
-        frontier = deque([state])
-        improved: tuple[State, float] | None = None
-        while frontier and improved is None:
-            if budget.exhausted(expanded):
-                return SearchResult("ehc", "budget", None, expanded, generated, evaluated,
-                                    budget.elapsed(), budget.describe())
-            node = frontier.popleft()
-            expanded += 1
-            best: tuple[float, State] | None = None
-            for action, child in task.successors(node):
-                if child in parents:
-                    continue
-                parents[child] = (node, action)
-                generated += 1
-                if task.is_goal(child):
-                    best = (-1.0, child)
+    goal, goal_neg = task.goal, task.goal_neg
+    # Every evaluation of the climb, so that states met again on a later plateau are not re-evaluated.
+    known: dict[State, tuple[float, int]] = {state: (h_state, helpful)}
+    while not (state & goal == goal and not state & goal_neg):
+        found: Improvement | None = None
+        try:
+            for helpful_only in ((True, False) if prune else (False,)):
+                found = _improve(task, evaluate, state, h_state, known, helpful_only, budget, counts)
+                if found is not None:
                     break
-                h_child = h(child)
-                evaluated += 1
-                if h_child == INFINITY:
-                    continue
-                if h_child < h_state and (best is None or h_child < best[0]):
-                    best = (h_child, child)  # strict '<': the first generated wins ties
-                frontier.append(child)
-            if best is not None:
-                improved = (best[1], max(best[0], 0.0))
-        if improved is None:
+        except _OutOfBudget:
+            return SearchResult("ehc", "budget", None, counts.expanded, counts.generated,
+                                counts.evaluated, budget.elapsed(), budget.describe())
+        if found is None:
             return SearchResult(
-                "ehc", "failed", None, expanded, generated, evaluated, budget.elapsed(),
+                "ehc", "failed", None, counts.expanded, counts.generated, counts.evaluated,
+                budget.elapsed(),
                 f"enforced hill climbing hit a dead end after {len(plan)} action(s): no state "
                 f"reachable from there improves on h_FF = {h_state:g} (try bfs, gbfs or astar)")
-        state, h_state = improved
-        plan.extend(extract_plan(parents, state))
-    return SearchResult("ehc", "solved", tuple(plan), expanded, generated, evaluated,
-                        budget.elapsed())
+        state, h_state, helpful, parents = found
+        plan.extend(plan_to(task, parents, state))
+    return SearchResult("ehc", "solved", tuple(plan), counts.expanded, counts.generated,
+                        counts.evaluated, budget.elapsed())
+
+
+def _improve(
+    task: Task, evaluate: HelpfulHeuristic, start: State, h_start: float,
+    known: dict[State, tuple[float, int]], helpful_only: bool, budget: SearchBudget, counts: _Counts,
+) -> Improvement | None:
+    """Breadth-first search from ``start`` for a state with h below ``h_start``, None if there is none.
+
+    ``known`` caches evaluations, so the repeat over every action (and later
+    plateaus) do not pay for them twice. Raises ``_OutOfBudget``.
+    """
+    goal, goal_neg = task.goal, task.goal_neg
+    parents: dict[State, State | None] = {start: None}
+    frontier = deque([start])
+    check_at = 0.0
+    while frontier:
+        if counts.expanded >= check_at:
+            if budget.exhausted(counts.expanded):
+                raise _OutOfBudget
+            check_at = budget.next_check(counts.expanded)
+        node = frontier.popleft()
+        counts.expanded += 1
+        allowed = known[node][1] if helpful_only else ALL_ACTIONS
+        best: tuple[float, State, int] | None = None
+        for child, index in task.successor_indices(node):
+            if child in parents or not (allowed >> index) & 1:
+                continue
+            parents[child] = node
+            counts.generated += 1
+            if child & goal == goal and not child & goal_neg:
+                best = (-1.0, child, 0)
+                break
+            evaluation = known.get(child)
+            if evaluation is None:
+                evaluation = evaluate(child)
+                counts.evaluated += 1
+                known[child] = evaluation
+            h_child = evaluation[0]
+            if h_child == INFINITY:
+                continue
+            if h_child < h_start and (best is None or h_child < best[0]):
+                best = (h_child, child, evaluation[1])  # strict '<': the first generated wins ties
+            frontier.append(child)
+        if best is not None:
+            return best[1], max(best[0], 0.0), best[2], parents
+    return None

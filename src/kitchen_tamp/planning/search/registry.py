@@ -27,8 +27,8 @@ SEARCHES: dict[str, Search] = {
 
 SEARCH_DESCRIPTIONS: dict[str, str] = {
     "bfs": "breadth-first search (optimal)",
-    "ehc": "enforced hill climbing with h_FF",
-    "gbfs": "greedy best-first search with h_FF",
+    "ehc": "enforced hill climbing with h_FF, helpful actions first",
+    "gbfs": "greedy best-first search with h_FF and preferred operators",
     "astar": "A* with h_max (optimal)",
 }
 

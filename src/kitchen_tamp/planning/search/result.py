@@ -5,9 +5,10 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass
+from itertools import pairwise
 from typing import Literal
 
-from kitchen_tamp.planning.task import GroundAction, State
+from kitchen_tamp.planning.task import GroundAction, State, Task
 
 SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
 """``unsolvable``: the reachable states were exhausted without a goal (a proof);
@@ -31,23 +32,32 @@ class SearchResult:
         return self.status == "solved"
 
 
-Parents = Mapping[State, tuple[State, GroundAction] | None]
+StateParents = Mapping[State, State | None]
+"""Each reached state's parent (None at the root); the actions are recovered afterwards."""
 
 
-def extract_plan(parents: Parents, state: State) -> tuple[GroundAction, ...]:
-    """Follow parent pointers from ``state`` back to the root (whose entry is None)."""
-    steps: list[GroundAction] = []
-    entry = parents[state]
-    while entry is not None:
-        state, action = entry
-        steps.append(action)
-        entry = parents[state]
-    steps.reverse()
-    return tuple(steps)
+def plan_to(task: Task, parents: StateParents, state: State) -> tuple[GroundAction, ...]:
+    """The actions along the parent pointers from the root to ``state``.
+
+    Searches keep only parent states, which is cheaper than a (state, action)
+    pair per generated state. Each step takes the first action, in successor
+    order, that leads from the parent to the child (usually the one that
+    generated it; any such action gives the same states).
+    """
+    path = [state]
+    parent = parents[state]
+    while parent is not None:
+        path.append(parent)
+        parent = parents[parent]
+    path.reverse()
+    return tuple(task.action_between(a, b) for a, b in pairwise(path))
 
 
 class SearchBudget:
     """Time and expansion limits; ``exhausted`` is cheap enough to call per expansion."""
+
+    CLOCK_EVERY = 64
+    """The clock is read every this many expansions."""
 
     def __init__(self, time_budget: float | None, max_expansions: int | None) -> None:
         if time_budget is not None and time_budget <= 0:
@@ -61,8 +71,18 @@ class SearchBudget:
     def exhausted(self, expanded: int) -> bool:
         if self.max_expansions is not None and expanded >= self.max_expansions:
             return True
-        return (self.deadline is not None and expanded % 64 == 0
+        return (self.deadline is not None and expanded % self.CLOCK_EVERY == 0
                 and time.perf_counter() > self.deadline)
+
+    def next_check(self, expanded: int) -> float:
+        """After ``exhausted(expanded)`` said no: the next count at which it can say yes.
+
+        Hot loops compare against this number and only call ``exhausted`` there.
+        """
+        limit = float("inf") if self.max_expansions is None else float(self.max_expansions)
+        if self.deadline is not None:
+            limit = min(limit, float((expanded // self.CLOCK_EVERY + 1) * self.CLOCK_EVERY))
+        return limit
 
     def elapsed(self) -> float:
         return time.perf_counter() - self.start

@@ -1,0 +1,3 @@
+(define (problem achievers) (:domain achievers)
+  (:init (start))
+  (:goal (goal)))

@@ -1,0 +1,3 @@
+(define (problem helpful-trap) (:domain helpful-trap)
+  (:init (ready))
+  (:goal (done)))
