@@ -85,13 +85,7 @@ class KitchenSampler:
         self.kitchen.scene.restore_state(state.scene)
         action = transition.action
         trajectory, record = refine_action(
-            self.kitchen,
-            0,
-            action,
-            self.backend,
-            rng,
-            samples_per_step=1,
-            collision_model=self.collision_model,
+            self.kitchen, 0, action, self.backend, rng, collision_model=self.collision_model
         )
         self.last_record = record
         if trajectory is None:
