@@ -1,4 +1,4 @@
-"""Putting the kitchen in the state of any point of a trajectory, segment by segment.
+"""The states along a segment that verification checks.
 
 A segment's waypoints may be far apart (a free-space move is a few joint-space
 corners); ``interpolate_segment`` fills them in so no joint moves more than a
@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kitchen_tamp.kitchen import KitchenScene, Segment
+from kitchen_tamp.kitchen import Segment
 from kitchen_tamp.world import FloatArray
 
 LINEAR_STEP = 0.005
@@ -60,11 +60,3 @@ def interpolate_segment(segment: Segment, joint_step: float) -> SegmentSamples:
         None if drawer is None else np.concatenate(parts_d),
         np.concatenate(owners),
     )
-
-
-def pose_kitchen(kitchen: KitchenScene, segment: Segment, samples: SegmentSamples, index: int) -> None:
-    """Arm, gripper and drawer at sample ``index`` (the segment must have been entered)."""
-    if segment.openable is not None and samples.drawer_values is not None:
-        kitchen.set_opening(segment.openable, float(samples.drawer_values[index]))
-    kitchen.robot.set_gripper_width(float(samples.gripper_widths[index]))
-    kitchen.robot.set_configuration(samples.configurations[index])

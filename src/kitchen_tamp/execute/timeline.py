@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kitchen_tamp.kitchen import KitchenScene, Segment, enter_segment
+from kitchen_tamp.kitchen import KitchenScene, Segment, enter_segment, set_waypoint
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.world import FloatArray
 
@@ -82,14 +82,7 @@ class Timeline:
                 t = float(times[cursor])
                 i = int(np.clip(np.searchsorted(timed.times, t, side="right") - 1, 0, len(timed.times) - 2))
                 span = timed.times[i + 1] - timed.times[i]
-                f = float(np.clip((t - timed.times[i]) / span, 0.0, 1.0))
-                if segment.openable is not None and segment.drawer_values is not None:
-                    d = segment.drawer_values
-                    kitchen.set_opening(segment.openable, float(d[i] + f * (d[i + 1] - d[i])))
-                w = segment.gripper_widths
-                kitchen.robot.set_gripper_width(float(w[i] + f * (w[i + 1] - w[i])))
-                q = segment.configurations
-                kitchen.robot.set_configuration(q[i] + f * (q[i + 1] - q[i]))
+                set_waypoint(kitchen, segment, i, float(np.clip((t - timed.times[i]) / span, 0.0, 1.0)))
                 yield t, timed.step
                 cursor += 1
 

@@ -105,12 +105,19 @@ def enter_segment(kitchen: KitchenScene, segment: Segment) -> None:
             kitchen.grasp(segment.attached_box)
 
 
-def set_waypoint(kitchen: KitchenScene, segment: Segment, index: int) -> None:
-    """Arm, gripper and drawer at waypoint ``index`` of ``segment`` (carried boxes follow)."""
+def set_waypoint(kitchen: KitchenScene, segment: Segment, index: int, fraction: float = 0.0) -> None:
+    """Arm, gripper and drawer at waypoint ``index`` of ``segment``, or ``fraction`` of the way
+    from it to the next waypoint (carried boxes follow)."""
+
+    def at(values: FloatArray) -> FloatArray:
+        if fraction == 0.0:
+            return np.asarray(values[index])
+        return np.asarray(values[index] + fraction * (values[index + 1] - values[index]))
+
     if segment.openable is not None and segment.drawer_values is not None:
-        kitchen.set_opening(segment.openable, float(segment.drawer_values[index]))
-    kitchen.robot.set_gripper_width(float(segment.gripper_widths[index]))
-    kitchen.robot.set_configuration(segment.configurations[index])
+        kitchen.set_opening(segment.openable, float(at(segment.drawer_values)))
+    kitchen.robot.set_gripper_width(float(at(segment.gripper_widths)))
+    kitchen.robot.set_configuration(at(segment.configurations))
 
 
 def action_text(action: tuple[str, tuple[str, ...]]) -> str:
