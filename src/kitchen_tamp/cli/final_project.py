@@ -9,7 +9,7 @@ import os
 import sys
 import time
 import traceback
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 
@@ -60,28 +60,19 @@ class UsageError(Exception):
     """A command line that cannot run as asked (exit 2)."""
 
 
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be non-negative, got {value}")
-    return value
+def _integer_at_least(minimum: int) -> Callable[[str], int]:
+    """An argparse type: an integer no smaller than ``minimum``."""
 
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be at least {minimum}, got {value}")
+        return value
 
-def _positive(text: str) -> int:
-    value = _seed(text)
-    if value == 0:
-        raise argparse.ArgumentTypeError("must be at least 1")
-    return value
-
-
-def _at_least_two(text: str) -> int:
-    value = _seed(text)
-    if value < 2:
-        raise argparse.ArgumentTypeError("must be at least 2")
-    return value
+    return parse
 
 
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
@@ -106,20 +97,20 @@ def build_parser() -> argparse.ArgumentParser:
         sub.add_argument("--problem", default=str(PDDL_DIR / "problem.pddl"),
                          help="problem file; a bare name is also looked up in pddl/ (default: problem.pddl)")
         sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
-        sub.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
-        sub.add_argument("--max-plans", type=_positive, default=DEFAULT_MAX_PLANS, metavar="N",
+        sub.add_argument("--seed", type=_integer_at_least(0), default=0, help="random seed (default 0)")
+        sub.add_argument("--max-plans", type=_integer_at_least(1), default=DEFAULT_MAX_PLANS, metavar="N",
                          help="abstract plans SeSamE may try, shortest first (default %(default)s)")
-        sub.add_argument("--samples-per-step", type=_positive, default=DEFAULT_SAMPLES_PER_STEP,
+        sub.add_argument("--samples-per-step", type=_integer_at_least(1), default=DEFAULT_SAMPLES_PER_STEP,
                          metavar="N", help="samples of an action (targets + motion) before SeSamE "
                                            "steps back (default %(default)s)")
-        sub.add_argument("--max-samples", type=_positive, default=DEFAULT_MAX_SAMPLES, metavar="N",
+        sub.add_argument("--max-samples", type=_integer_at_least(1), default=DEFAULT_MAX_SAMPLES, metavar="N",
                          help="samples over the whole run (default %(default)s)")
         sub.add_argument(
             "--collision-model", choices=sorted(COLLISION_MODELS), default=DEFAULT_COLLISION_MODEL,
             help="collision model for planning (default %(default)s; PyBullet always verifies)",
         )
         if mode == "optimizes":
-            sub.add_argument("--waypoints", type=_at_least_two, default=DEFAULT_SETTINGS.num_waypoints,
+            sub.add_argument("--waypoints", type=_integer_at_least(2), default=DEFAULT_SETTINGS.num_waypoints,
                              metavar="N", help="joint waypoints per move (default %(default)s)")
         if mode == "rrt":
             sub.add_argument("--rrt", choices=sorted(RRT_VARIANTS), default="connect",
@@ -231,10 +222,8 @@ def verify_and_render(
 
 
 def _finish(report: RunReport, out_dir: Path, report_name: str = REPORT_FILE) -> int:
-    total = report.timing.get("started")
-    if isinstance(total, float):
-        report.timing["total_s"] = time.perf_counter() - total
-        del report.timing["started"]
+    if report.started is not None:
+        report.timing["total_s"] = time.perf_counter() - report.started
     path = report.write(out_dir / report_name)
     verification = report.verification or {}
     if report.solved:
@@ -257,7 +246,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     task = load_task(problem, domain)
     out_dir: Path = args.out or Path("out") / f"{problem.stem}-{args.mode}-seed{args.seed}"
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
-    report.timing["started"] = started
+    report.started = started
     with build_kitchen_for_task(task) as kitchen:
         report.timing["startup_s"] = time.perf_counter() - started
         clock = time.perf_counter()
@@ -305,7 +294,7 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     out_dir: Path = args.out or args.run_dir
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
     report.plan = run.trajectory.plan
-    report.timing["started"] = started
+    report.started = started
     _say(f"replaying {len(run.trajectory.steps)} actions of {args.run_dir} ({run.problem.name}, {run.mode}, "
          f"seed {run.seed})")
     report.outputs["trajectory"] = str(args.run_dir / TRAJECTORY_FILE)

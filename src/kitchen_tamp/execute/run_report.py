@@ -34,6 +34,8 @@ class RunReport:
     bilevel: dict[str, object] | None = None
     outputs: dict[str, str | None] = field(default_factory=dict)
     timing: dict[str, object] = field(default_factory=dict)
+    started: float | None = None
+    """``time.perf_counter()`` when the run began; the report's ``timing.total_s`` counts from it."""
 
     @property
     def solved(self) -> bool:
