@@ -32,7 +32,7 @@ from kitchen_tamp.bilevel.results import (
     Outcome,
     PlanAttempt,
     PlanningCounts,
-    StepRecord,
+    StepSamplingRecord,
 )
 from kitchen_tamp.bilevel.sampling_session import Budget, SampleCallback, SamplingSession
 
@@ -54,9 +54,10 @@ class _StepCounter(Generic[A]):
     backtracks: int = 0
     last_failure: str | None = None
 
-    def record(self, plan_index: int, index: int) -> StepRecord[A]:
-        return StepRecord(plan_index, index, self.action, self.samples, self.failures, self.backtracks,
-                          self.last_failure)
+    def record(self, plan_index: int, index: int) -> StepSamplingRecord[A]:
+        return StepSamplingRecord(
+            plan_index, index, self.action, self.samples, self.failures, self.backtracks, self.last_failure
+        )
 
 
 def plan_generator_of(problem: BilevelProblem[X, U, S, A]) -> AbstractPlanGenerator[S, A]:

@@ -36,11 +36,9 @@ from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_t
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
-from kitchen_tamp.refinement import MotionBackend, SamplingMotionBackend, StepRecord
+from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
-    DEFAULT_MAX_PLANS,
-    DEFAULT_MAX_SAMPLES,
-    DEFAULT_SAMPLES_PER_STEP,
+    KITCHEN_BUDGETS,
     SesameBudgets,
     SesameRefinement,
     refine_with_sesame,
@@ -98,13 +96,15 @@ def build_parser() -> argparse.ArgumentParser:
                          help="problem file; a bare name is also looked up in pddl/ (default: problem.pddl)")
         sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
         sub.add_argument("--seed", type=_integer_at_least(0), default=0, help="random seed (default 0)")
-        sub.add_argument("--max-plans", type=_integer_at_least(1), default=DEFAULT_MAX_PLANS, metavar="N",
+        sub.add_argument("--max-plans", type=_integer_at_least(1), default=KITCHEN_BUDGETS.max_plans,
+                         metavar="N",
                          help="abstract plans SeSamE may try, shortest first (default %(default)s)")
-        sub.add_argument("--samples-per-step", type=_integer_at_least(1), default=DEFAULT_SAMPLES_PER_STEP,
-                         metavar="N", help="samples of an action (targets + motion) before SeSamE "
-                                           "steps back (default %(default)s)")
-        sub.add_argument("--max-samples", type=_integer_at_least(1), default=DEFAULT_MAX_SAMPLES, metavar="N",
-                         help="samples over the whole run (default %(default)s)")
+        sub.add_argument("--samples-per-step", type=_integer_at_least(1),
+                         default=KITCHEN_BUDGETS.samples_per_step, metavar="N",
+                         help="samples of an action (targets + motion) before SeSamE "
+                              "steps back (default %(default)s)")
+        sub.add_argument("--max-samples", type=_integer_at_least(1), default=KITCHEN_BUDGETS.max_samples,
+                         metavar="N", help="samples over the whole run (default %(default)s)")
         sub.add_argument(
             "--collision-model", choices=sorted(COLLISION_MODELS), default=DEFAULT_COLLISION_MODEL,
             help="collision model for planning (default %(default)s; PyBullet always verifies)",
@@ -140,7 +140,7 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
-def _progress(event: SampleEvent[State, GroundAction], record: StepRecord | None) -> None:
+def _progress(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
     """One line per sample: which plan and step, and what the sample gave."""
     where = f"plan {(event.plan_index or 0) + 1}, step {(event.step_index or 0) + 1}"
     head = f"[{where}] {event.transition.action.text}"
@@ -278,7 +278,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     return verify_and_render(task, run, out_dir, report, args)
 
 
-def _record_step_timing(report: RunReport, records: Sequence[StepRecord]) -> None:
+def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]) -> None:
     report.timing["skills_s"] = sum(r.seconds.get("skills_s", 0.0) for r in records)
     report.timing["motion_s"] = sum(r.seconds.get("motion_s", 0.0) for r in records)
     report.timing["steps"] = [
