@@ -163,7 +163,7 @@ CHECKER_BACKENDS = ("pybullet", "drake")
 def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[MotionQuery]:
     """One free-space query per action of the problem's BFS plan, until a skill fails to sample."""
     from kitchen_tamp.kitchen import SkillFailure, load_kitchen_problem, sample_action_targets
-    from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+    from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, ROBOT_BODY
     from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
     from kitchen_tamp.planning.search.registry import plan
     from kitchen_tamp.world import panda_urdf_path
@@ -173,7 +173,7 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
     found = plan(task, "bfs")
     if found.plan is None:
         raise RuntimeError(f"{problem.name}: no symbolic plan ({found.status})")
-    paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
+    paths: dict[str, Path | str] = {KITCHEN_BODY: kitchen.map.kitchen_urdf, ROBOT_BODY: panda_urdf_path()}
     paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
     space = ConfigurationSpace(kitchen.robot.lower, kitchen.robot.upper)
     rng = np.random.default_rng(seed)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
 from kitchen_tamp.world import (
@@ -38,7 +38,7 @@ class CheckerPair:
 
 
 def drake_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
-    paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
+    paths: dict[str, Path | str] = {KITCHEN_BODY: kitchen.map.kitchen_urdf, ROBOT_BODY: panda_urdf_path()}
     paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
     return DrakeCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)
 

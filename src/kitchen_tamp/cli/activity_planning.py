@@ -12,6 +12,7 @@ from typing import Any
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_for, find_problem
 from kitchen_tamp.planning import (
     SEARCH_DESCRIPTIONS,
     SEARCHES,
@@ -23,7 +24,6 @@ from kitchen_tamp.planning import (
     plan_text,
     validate_plan,
 )
-from kitchen_tamp.planning.pddl_files import PDDL_DIR
 
 DEFAULT_PLANNERS = ("bfs", "ehc")
 
@@ -33,10 +33,11 @@ def build_parser() -> argparse.ArgumentParser:
         prog="activity_planning.py",
         description="Plan a PDDL problem with breadth-first search, enforced hill climbing "
                     "(h_FF), greedy best-first search (h_FF) or A* (h_max), and print the plans.")
-    parser.add_argument("problem", nargs="?", default=str(PDDL_DIR / "problem.pddl"),
-                        help="problem file; a bare name is also looked up in pddl/ "
-                             "(default: the kitchen problem.pddl)")
-    parser.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
+    parser.add_argument("problem", nargs="?", default=DEFAULT_PROBLEM,
+                        help="problem file; a bare name is looked up in the working directory, then in "
+                             "the shipped kitchens (default: the kitchen %(default)s)")
+    parser.add_argument("--domain", help="domain file (default: domain.pddl beside the problem, else the "
+                                         "shipped kitchen domain)")
     parser.add_argument("--planner", choices=[*SEARCHES, "all"], action="append",
                         help="search to run; repeat for several (default: bfs and ehc)")
     parser.add_argument("--plan-out", type=Path, metavar="FILE",
@@ -91,7 +92,8 @@ def _print_result(result: SearchResult) -> None:
 
 def run(args: argparse.Namespace) -> int:
     started = time.perf_counter()
-    task = load_task(args.problem, args.domain)
+    problem = find_problem(args.problem)
+    task = load_task(problem, args.domain if args.domain else domain_for(problem))
     ground_seconds = time.perf_counter() - started
     if args.timeout is not None and args.timeout <= 0:
         raise PlanningInputError("--timeout must be a positive number of seconds")

@@ -32,10 +32,11 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
-from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
+from kitchen_tamp.kitchen import KitchenError, KitchenMap, KitchenScene, build_kitchen_for_task
+from kitchen_tamp.kitchen.scene_choice import choose_scene
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
-from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
     KITCHEN_BUDGETS,
@@ -74,6 +75,9 @@ def _integer_at_least(minimum: int) -> Callable[[str], int]:
 
 
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--scene", type=Path, metavar="FILE",
+                        help="kitchen scene file (default: scene.toml beside the problem, else the "
+                             "default kitchen)")
     parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
@@ -92,9 +96,11 @@ def build_parser() -> argparse.ArgumentParser:
     }
     for mode, text in helps.items():
         sub = modes.add_parser(mode, help=text, description=text)
-        sub.add_argument("--problem", default=str(PDDL_DIR / "problem.pddl"),
-                         help="problem file; a bare name is also looked up in pddl/ (default: problem.pddl)")
-        sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem)")
+        sub.add_argument("--problem", default=DEFAULT_PROBLEM,
+                         help="problem file; a bare name is looked up in the working directory, beside "
+                              "the scene file, then in the shipped kitchens (default: %(default)s)")
+        sub.add_argument("--domain", help="domain file (default: domain.pddl beside the problem, else "
+                                          "the shipped kitchen domain)")
         sub.add_argument("--seed", type=_integer_at_least(0), default=0, help="random seed (default 0)")
         sub.add_argument("--max-plans", type=_integer_at_least(1), default=KITCHEN_BUDGETS.max_plans,
                          metavar="N",
@@ -188,13 +194,14 @@ def verify_and_render(
     out_dir: Path,
     report: RunReport,
     args: argparse.Namespace,
+    kitchen_map: KitchenMap,
     report_name: str = REPORT_FILE,
 ) -> int:
     """Verify ``run`` in a fresh kitchen, plot and render it, write the report; the exit code."""
     clock = time.perf_counter()
     trajectory = run.trajectory
     wait = _wait_for_enter if args.step and not args.gui else None
-    with build_kitchen_for_task(task, gui=args.gui) as fresh:
+    with build_kitchen_for_task(task, gui=args.gui, kitchen_map=kitchen_map) as fresh:
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
         if args.gui:
@@ -213,7 +220,7 @@ def verify_and_render(
     report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, show_velocities).name
     report.outputs["gif"] = None
     if not args.no_video:
-        with build_kitchen_for_task(task) as kitchen:
+        with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
             images = render_replay(kitchen, timeline)
         report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
         _say(f"rendered {len(images)} frames of the replay")
@@ -241,13 +248,14 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     """``rrt`` / ``optimizes``: plan, refine, write the trajectory, verify and render."""
     _check_display(args)
     backend = _motion_backend(args)
-    problem = resolve_problem_path(args.problem).resolve()
-    domain = Path(args.domain).resolve() if args.domain else problem.parent / "domain.pddl"
+    choice = choose_scene(args.problem, args.scene, Path(args.domain) if args.domain else None)
+    problem, domain = choice.problem.absolute(), choice.domain.absolute()
+    kitchen_map = choice.kitchen_map()
     task = load_task(problem, domain)
     out_dir: Path = args.out or Path("out") / f"{problem.stem}-{args.mode}-seed{args.seed}"
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
     report.started = started
-    with build_kitchen_for_task(task) as kitchen:
+    with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
         report.timing["startup_s"] = time.perf_counter() - started
         clock = time.perf_counter()
         result = plan(task, SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
@@ -275,7 +283,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     _record_step_timing(report, refined.records)
     run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)
     report.outputs["trajectory"] = write_trajectory(out_dir / TRAJECTORY_FILE, run).name
-    return verify_and_render(task, run, out_dir, report, args)
+    return verify_and_render(task, run, out_dir, report, args, kitchen_map)
 
 
 def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]) -> None:
@@ -291,6 +299,7 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     _check_display(args)
     run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
     task = load_task(run.problem, run.domain)
+    kitchen_map = choose_scene(run.problem, args.scene, run.domain).kitchen_map()
     out_dir: Path = args.out or args.run_dir
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
     report.plan = run.trajectory.plan
@@ -298,7 +307,7 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     _say(f"replaying {len(run.trajectory.steps)} actions of {args.run_dir} ({run.problem.name}, {run.mode}, "
          f"seed {run.seed})")
     report.outputs["trajectory"] = str(args.run_dir / TRAJECTORY_FILE)
-    return verify_and_render(task, run, out_dir, report, args, report_name="replay_report.json")
+    return verify_and_render(task, run, out_dir, report, args, kitchen_map, report_name="replay_report.json")
 
 
 def main(argv: Sequence[str] | None = None, started: float | None = None) -> int:

@@ -15,18 +15,18 @@ from kitchen_tamp.kitchen.errors import (
     UnsupportedInitialStateError,
 )
 from kitchen_tamp.kitchen.grasps import Grasp
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_MAP, KitchenMap
+from kitchen_tamp.kitchen.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
 from kitchen_tamp.kitchen.parameters import DEFAULT_PARAMETERS, SkillParameters
 from kitchen_tamp.kitchen.placements import Placement
 from kitchen_tamp.kitchen.regions import SupportRegion
+from kitchen_tamp.kitchen.scene_file import SceneFileError
 from kitchen_tamp.kitchen.skills import SKILLS, sample_action_targets, sample_targets
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, enter_segment, set_waypoint
 
 __all__ = [
     "DEFAULT_PARAMETERS",
-    "KITCHEN_MAP",
     "RESTING_GAP",
     "SKILLS",
     "Grasp",
@@ -35,6 +35,7 @@ __all__ = [
     "KitchenMap",
     "KitchenScene",
     "Placement",
+    "SceneFileError",
     "Segment",
     "SkillFailure",
     "SkillParameters",
@@ -47,7 +48,9 @@ __all__ = [
     "build_kitchen",
     "build_kitchen_for_task",
     "check_initial_state",
+    "default_kitchen_map",
     "enter_segment",
+    "load_kitchen_map",
     "load_kitchen_problem",
     "sample_action_targets",
     "sample_targets",

@@ -19,13 +19,13 @@ from kitchen_tamp.kitchen.errors import (
     UnknownObjectError,
     UnsupportedInitialStateError,
 )
-from kitchen_tamp.kitchen.kitchen_map import MODELS_DIR
 from kitchen_tamp.kitchen.layout import build_kitchen_for_task
+from kitchen_tamp.kitchen.scene_choice import SceneChoice, choose_scene
+from kitchen_tamp.kitchen.scene_file import SceneFileError
 from kitchen_tamp.kitchen.show import render_scene, render_skill_frames
+from kitchen_tamp.kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.planning import PlanningInputError, load_task, plan
 from kitchen_tamp.world import tile, write_png
-
-DEFAULT_PROBLEM = MODELS_DIR.parent / "pddl" / "problem.pddl"
 
 
 def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
@@ -34,8 +34,14 @@ def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     )
     commands = parser.add_subparsers(dest="command", required=True)
     show = commands.add_parser("show", help="render the kitchen scene for a problem")
-    show.add_argument("--problem", type=Path, default=DEFAULT_PROBLEM, help="PDDL problem file")
-    show.add_argument("--domain", type=Path, default=None, help="domain file (default: beside the problem)")
+    show.add_argument("--problem", default=DEFAULT_PROBLEM,
+                      help="PDDL problem file; a bare name is looked up in the working directory, then "
+                           "beside the scene file, then in the shipped kitchens (default: %(default)s)")
+    show.add_argument("--scene", type=Path, default=None,
+                      help="kitchen scene file (default: scene.toml beside the problem, else the default "
+                           "kitchen)")
+    show.add_argument("--domain", type=Path, default=None,
+                      help="domain file (default: domain.pddl beside the problem, else the shipped one)")
     show.add_argument("--out", type=Path, default=Path("out/scene.png"), help="PNG to write")
     show.add_argument("--skills", action="store_true", help="also render the arm at each plan step's targets")
     show.add_argument("--seed", type=int, default=0, help="seed of the skills' sampling")
@@ -45,8 +51,9 @@ def parse_arguments(argv: Sequence[str] | None) -> argparse.Namespace:
 
 def show(arguments: argparse.Namespace) -> int:
     """Write the scene picture (and with ``--skills`` a sheet of skill frames beside it)."""
-    task = load_task(arguments.problem, arguments.domain)
-    with build_kitchen_for_task(task, gui=arguments.gui) as kitchen:
+    choice: SceneChoice = choose_scene(arguments.problem, arguments.scene, arguments.domain)
+    task = load_task(choice.problem, choice.domain)
+    with build_kitchen_for_task(task, gui=arguments.gui, kitchen_map=choice.kitchen_map()) as kitchen:
         path = write_png(render_scene(kitchen), arguments.out)
         print(f"wrote {path}")
         if arguments.skills:
@@ -67,6 +74,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return show(arguments)
     except (
         PlanningInputError,
+        SceneFileError,
         UnknownObjectError,
         UnknownActionError,
         UnsupportedInitialStateError,

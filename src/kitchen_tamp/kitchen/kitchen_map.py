@@ -2,22 +2,27 @@
 
 This replaces the original project's table of hand-tuned joint angles: a symbol
 maps to geometry (a surface link, a drawer's joint, floor and handle links, a
-box model) and every joint goal is computed from that geometry.
+box model) and every joint goal is computed from that geometry. The map is
+derived from the kitchen's scene file, like the model files it points to, so
+the two cannot disagree.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cache
 from pathlib import Path
 from types import MappingProxyType
 from typing import Final
 
-MODELS_DIR: Final = Path(__file__).resolve().parents[3] / "models"
-KITCHEN_URDF: Final = MODELS_DIR / "kitchen.urdf"
+from kitchen_tamp.kitchen.scene_file import read_scene
+from kitchen_tamp.kitchen.scene_models import MOUNT_LINK, floor_link, handle_link, joint_name, model_files
+from kitchen_tamp.kitchen.scene_spec import KitchenSpec
+from kitchen_tamp.kitchens import default_scene_path
 
 KITCHEN_BODY: Final = "kitchen"
 ROBOT_BODY: Final = "panda"
-ROBOT_MOUNT_LINK: Final = "robot_mount"
+ROBOT_MOUNT_LINK: Final = MOUNT_LINK
 """The robot's base stands at the centre of this link's top face."""
 
 
@@ -51,25 +56,12 @@ class BoxSymbol:
 class KitchenMap:
     """Symbol -> geometry for every object the kitchen has, grouped by PDDL type."""
 
-    surfaces: MappingProxyType[str, SurfaceSymbol] = field(
-        default_factory=lambda: MappingProxyType(
-            {"stove": SurfaceSymbol("stove"), "countertop": SurfaceSymbol("countertop")}
-        )
-    )
-    openables: MappingProxyType[str, OpenableSymbol] = field(
-        default_factory=lambda: MappingProxyType(
-            {"drawer": OpenableSymbol("drawer_joint", "drawer", "drawer_floor", "drawer_handle")}
-        )
-    )
-    boxes: MappingProxyType[str, BoxSymbol] = field(
-        default_factory=lambda: MappingProxyType(
-            {
-                "sugar": BoxSymbol(MODELS_DIR / "sugar.urdf"),
-                "spam": BoxSymbol(MODELS_DIR / "spam.urdf"),
-                "baguette": BoxSymbol(MODELS_DIR / "baguette.urdf"),
-            }
-        )
-    )
+    scene_path: Path
+    """The scene file this map (and the model files) came from."""
+    kitchen_urdf: Path
+    surfaces: MappingProxyType[str, SurfaceSymbol]
+    openables: MappingProxyType[str, OpenableSymbol]
+    boxes: MappingProxyType[str, BoxSymbol]
 
     def type_of(self, name: str) -> str | None:
         """The PDDL type of a kitchen object, or None if the kitchen has no such object."""
@@ -81,5 +73,35 @@ class KitchenMap:
             return "box"
         return None
 
+    def object_names(self) -> list[str]:
+        """Every object of the kitchen: surfaces, openables, boxes."""
+        return [*self.surfaces, *self.openables, *self.boxes]
 
-KITCHEN_MAP: Final = KitchenMap()
+
+def kitchen_map_of(spec: KitchenSpec) -> KitchenMap:
+    """The map of a kitchen read from its scene file; writes its model files (see
+    ``scene_models.model_files``)."""
+    files = model_files(spec)
+    return KitchenMap(
+        scene_path=spec.path,
+        kitchen_urdf=files.kitchen,
+        surfaces=MappingProxyType({s.name: SurfaceSymbol(s.name) for s in spec.surfaces}),
+        openables=MappingProxyType(
+            {
+                d.name: OpenableSymbol(joint_name(d.name), d.name, floor_link(d.name), handle_link(d.name))
+                for d in spec.drawers
+            }
+        ),
+        boxes=MappingProxyType({b.name: BoxSymbol(files.boxes[b.name]) for b in spec.boxes}),
+    )
+
+
+def load_kitchen_map(scene_path: Path) -> KitchenMap:
+    """Read a scene file and derive its map and models; ``SceneFileError`` if the file is bad."""
+    return kitchen_map_of(read_scene(scene_path))
+
+
+@cache
+def default_kitchen_map() -> KitchenMap:
+    """The map of the default kitchen (shipped with the package)."""
+    return load_kitchen_map(default_scene_path())

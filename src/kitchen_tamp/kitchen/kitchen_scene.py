@@ -9,7 +9,7 @@ from types import TracebackType
 
 import numpy as np
 
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_MAP, KitchenMap
+from kitchen_tamp.kitchen.kitchen_map import KitchenMap, default_kitchen_map
 from kitchen_tamp.kitchen.regions import SupportRegion, box_corners, box_size, support_region
 from kitchen_tamp.world import (
     AllowedContact,
@@ -34,14 +34,14 @@ class KitchenScene:
         kitchen: Body,
         boxes: Mapping[str, Body],
         home: FloatArray,
-        kitchen_map: KitchenMap = KITCHEN_MAP,
+        kitchen_map: KitchenMap | None = None,
     ) -> None:
         self.scene = scene
         self.robot = robot
         self.kitchen = kitchen
         self.boxes = dict(boxes)
         self.home = home
-        self.map = kitchen_map
+        self.map = kitchen_map if kitchen_map is not None else default_kitchen_map()
         self.ik = InverseKinematics(robot)
 
     # -- lifetime ---------------------------------------------------------------------------

@@ -12,11 +12,10 @@ from kitchen_tamp.kitchen.abstraction import RESTING_GAP, check_initial_state
 from kitchen_tamp.kitchen.errors import UnknownObjectError, UnsupportedInitialStateError
 from kitchen_tamp.kitchen.kitchen_map import (
     KITCHEN_BODY,
-    KITCHEN_MAP,
-    KITCHEN_URDF,
     ROBOT_BODY,
     ROBOT_MOUNT_LINK,
     KitchenMap,
+    default_kitchen_map,
 )
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.regions import SupportRegion, support_region
@@ -30,21 +29,23 @@ WORLD_FROM_TOOL_DOWN = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -
 """Tool z pointing down, fingers closing along the world y axis."""
 
 
-def check_objects(objects: Mapping[str, str], kitchen_map: KitchenMap = KITCHEN_MAP) -> None:
-    """Raise ``UnknownObjectError`` for an object the kitchen lacks or types differently."""
+def check_objects(objects: Mapping[str, str], kitchen_map: KitchenMap) -> None:
+    """Raise ``UnknownObjectError`` (naming the scene file) for an object the kitchen lacks or
+    types differently."""
+    scene = kitchen_map.scene_path
     for name, type_name in sorted(objects.items()):
         kitchen_type = kitchen_map.type_of(name)
         if kitchen_type is None:
-            known = ", ".join([*kitchen_map.surfaces, *kitchen_map.openables, *kitchen_map.boxes])
-            raise UnknownObjectError(name, f"this kitchen only has {known}")
+            known = ", ".join(kitchen_map.object_names())
+            raise UnknownObjectError(name, f"the kitchen of {scene} only has {known}")
         if kitchen_type != type_name:
             raise UnknownObjectError(
-                name, f"it is a {kitchen_type} in this kitchen, the problem says {type_name}"
+                name, f"it is a {kitchen_type} in the kitchen of {scene}, the problem says {type_name}"
             )
 
 
 def box_locations(
-    init_atoms: Iterable[Atom], boxes: Iterable[str], kitchen_map: KitchenMap = KITCHEN_MAP
+    init_atoms: Iterable[Atom], boxes: Iterable[str]
 ) -> dict[str, str]:
     """Box -> the surface or openable it starts on/in, checked to be exactly one place."""
     locations: dict[str, list[str]] = {box: [] for box in boxes}
@@ -106,7 +107,7 @@ def build_kitchen(
     objects: Mapping[str, str],
     init_atoms: Iterable[Atom],
     gui: bool = False,
-    kitchen_map: KitchenMap = KITCHEN_MAP,
+    kitchen_map: KitchenMap | None = None,
 ) -> KitchenScene:
     """The kitchen laid out from ``:init``; Ψ(scene) is checked to equal ``init_atoms``.
 
@@ -115,12 +116,13 @@ def build_kitchen(
     ``InitialStateMismatchError`` when the layout's abstraction differs from ``:init``.
     """
     init = frozenset(init_atoms)
+    kitchen_map = kitchen_map if kitchen_map is not None else default_kitchen_map()
     check_objects(objects, kitchen_map)
     boxes = sorted(n for n, t in objects.items() if t == "box")
-    locations = box_locations(init, boxes, kitchen_map)
+    locations = box_locations(init, boxes)
     scene = Scene(gui=gui)
     try:
-        kitchen_body = scene.load_urdf(KITCHEN_BODY, KITCHEN_URDF, fixed_base=True)
+        kitchen_body = scene.load_urdf(KITCHEN_BODY, kitchen_map.kitchen_urdf, fixed_base=True)
         mount = support_region(kitchen_body, ROBOT_MOUNT_LINK, ROBOT_MOUNT_LINK)
         panda = scene.load_urdf(ROBOT_BODY, panda_urdf_path(), mount.world_from_region, fixed_base=True)
         robot = Robot(scene, panda, PANDA)
@@ -149,12 +151,16 @@ def build_kitchen(
     return kitchen
 
 
-def build_kitchen_for_task(task: Task, gui: bool = False) -> KitchenScene:
-    """The kitchen for a parsed problem."""
-    return build_kitchen(task.objects, task.init_atoms, gui=gui)
+def build_kitchen_for_task(
+    task: Task, gui: bool = False, kitchen_map: KitchenMap | None = None
+) -> KitchenScene:
+    """The kitchen for a parsed problem (the default kitchen unless ``kitchen_map`` is given)."""
+    return build_kitchen(task.objects, task.init_atoms, gui=gui, kitchen_map=kitchen_map)
 
 
-def load_kitchen_problem(problem: Path | str, gui: bool = False) -> tuple[Task, KitchenScene]:
+def load_kitchen_problem(
+    problem: Path | str, gui: bool = False, kitchen_map: KitchenMap | None = None
+) -> tuple[Task, KitchenScene]:
     """Parse a problem file (domain beside it) and build its kitchen."""
     task = load_task(problem)
-    return task, build_kitchen_for_task(task, gui=gui)
+    return task, build_kitchen_for_task(task, gui=gui, kitchen_map=kitchen_map)
