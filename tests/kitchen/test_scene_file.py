@@ -63,7 +63,9 @@ MISTAKES: dict[str, tuple[Callable[[dict[str, Any]], None], str, str]] = {
     "missing key": (drop_height, "surfaces.countertop", "missing key 'height'"),
     "negative size": (negative_box, "boxes.sugar.size", "must be positive, got -0.04"),
     "box larger than its place": (huge_box, "boxes.spam.size", "larger than every surface and drawer"),
-    "drawers overlapping": (second_drawer_overlapping, "drawers.lower_drawer.y", "its cavity overlaps drawer 'drawer'"),
+    "drawers overlapping": (
+        second_drawer_overlapping, "drawers.lower_drawer.y", "its cavity overlaps drawer 'drawer'"
+    ),
     "name used twice": (name_twice, "boxes.stove.name", "name 'stove' used twice (also in surfaces)"),
     "misspelt key": (misspelt_key, "counter", "missing key 'height' (is 'heigth' a misspelling?)"),
     "unknown key": (extra_key, "boxes.sugar.flavour", "unknown key"),
