@@ -59,6 +59,10 @@ def surface_off_the_edge(data: dict[str, Any]) -> None:
     data["surfaces"][0]["extent"] = [[0.48, 0.74], [0.50, 0.80]]
 
 
+def bad_name(data: dict[str, Any]) -> None:
+    data["boxes"][1]["name"] = "spam can"
+
+
 MISTAKES: dict[str, tuple[Callable[[dict[str, Any]], None], str, str]] = {
     "missing key": (drop_height, "surfaces.countertop", "missing key 'height'"),
     "negative size": (negative_box, "boxes.sugar.size", "must be positive, got -0.04"),
@@ -69,6 +73,7 @@ MISTAKES: dict[str, tuple[Callable[[dict[str, Any]], None], str, str]] = {
     "name used twice": (name_twice, "boxes.stove.name", "name 'stove' used twice (also in surfaces)"),
     "misspelt key": (misspelt_key, "counter", "missing key 'height' (is 'heigth' a misspelling?)"),
     "unknown key": (extra_key, "boxes.sugar.flavour", "unknown key"),
+    "not a PDDL name": (bad_name, "boxes[1].name", "'spam can' is not a PDDL name"),
     "surface half off the counter": (surface_off_the_edge, "surfaces.stove.extent", "partly on the counter"),
 }
 

@@ -44,6 +44,8 @@ def _inside(inner: Interval, outer: Interval) -> bool:
 
 
 def _check_surfaces(spec: KitchenSpec) -> None:
+    if not spec.surfaces:
+        raise SceneFileError(spec.path, "surfaces", "a kitchen needs at least one surface ([[surfaces]])")
     counter = spec.counter
     half_x, half_y = spec.mount.size[0] / 2, spec.mount.size[1] / 2
     mount = ((-half_x, half_x), (-half_y, half_y))

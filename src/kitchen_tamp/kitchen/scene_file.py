@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
@@ -32,6 +33,8 @@ from kitchen_tamp.kitchen.scene_spec import (
 )
 
 __all__ = ["SceneFileError", "parse_scene", "read_scene"]
+
+NAME_PATTERN: Final = re.compile(r"[A-Za-z][A-Za-z0-9_\-]*")
 
 
 class _Table:
@@ -121,6 +124,8 @@ class _Table:
     def named(self) -> str:
         """Read this table's ``name`` and use it in later key paths."""
         name = self.text("name")
+        if not NAME_PATTERN.fullmatch(name):
+            raise self.error("name", f"{name!r} is not a PDDL name (a letter, then letters, digits, _ or -)")
         self.where = self.where.rsplit("[", 1)[0] + f".{name}"
         return name
 
