@@ -1,6 +1,8 @@
 """What the kitchen domain's symbols mean in the simulated kitchen.
 
-Build the scene for a problem (``build_kitchen_for_task``), read its symbolic
+A kitchen is one scene file (``scene_file``); its models and its map of symbols
+to geometry are derived from it (``load_kitchen_map``; the shipped default kitchen
+is ``default_kitchen_map``). Build the scene for a problem (``build_kitchen_for_task``), read its symbolic
 state back (``abstract_state``, Ψ), and turn each grounded action into motion
 targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
 """
