@@ -205,6 +205,7 @@ def verify_and_render(
     trajectory = run.trajectory
     wait = _wait_for_enter if args.step and not args.gui else None
     with build_kitchen_for_task(task, gui=args.gui) as fresh:
+        live = _start_live_viewer(fresh) if args.meshcat and live is None else live
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
         if args.gui:
@@ -224,7 +225,6 @@ def verify_and_render(
     report.outputs["gif"] = report.outputs["html"] = None
     if not args.no_video:
         with build_kitchen_for_task(task) as kitchen:
-            live = _start_live_viewer(kitchen) if args.meshcat and live is None else live
             html_clock = time.perf_counter()
             report.outputs["html"] = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, live).name
             report.timing["html_s"] = time.perf_counter() - html_clock

@@ -37,6 +37,8 @@ SCENE_PATH = "/kitchen_tamp"
 """Meshcat path under which the scene is drawn."""
 MESHCAT_FOV_DEGREES = 75.0
 """Meshcat's default camera field of view (vertical, degrees)."""
+CAMERA_MARGIN = 1.25
+"""How much farther than the GIF's camera (corrected for the field of view) the page's camera starts."""
 _POSE_TOLERANCE = 1e-7
 """Pose change (m, or quaternion component) below which a link counts as still."""
 
@@ -99,10 +101,11 @@ def link_path(link: RecordedLink) -> str:
 
 def camera_eye(view: CameraView) -> FloatArray:
     """Where to put Meshcat's camera to see what the PyBullet yaw/pitch/distance camera ``view``
-    sees (z up): on the same line of sight, nearer by the ratio of the fields of view."""
+    sees (z up): on the same line of sight, at the distance where Meshcat's wider field of view
+    shows as much, with ``CAMERA_MARGIN`` to spare."""
     yaw, pitch = np.radians(view.yaw), np.radians(view.pitch)
     zoom = np.tan(np.radians(view.fov_degrees / 2)) / np.tan(np.radians(MESHCAT_FOV_DEGREES / 2))
-    distance = view.distance * zoom
+    distance = CAMERA_MARGIN * view.distance * zoom
     offset = distance * np.array(
         [np.cos(pitch) * np.sin(yaw), -np.cos(pitch) * np.cos(yaw), -np.sin(pitch)]
     )
