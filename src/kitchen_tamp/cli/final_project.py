@@ -8,7 +8,6 @@ import argparse
 import os
 import sys
 import time
-import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -16,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.bilevel import SampleEvent
-from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_folder
 from kitchen_tamp.execute import (
     FRAME_SECONDS,
@@ -310,33 +309,23 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     return verify_and_render(task, run, out_dir, report, args, report_name="replay_report.json")
 
 
-def _setup_problem(error: WorldError | NoNonlinearSolverError) -> str:
-    """One line on a setup this program cannot run with: what is wrong, and where to look."""
+def _bad_input_line(error: Exception) -> str | None:
+    """The one line for an error in the user's input or setup (exit 2); ``None`` for a bug."""
+    if isinstance(error, BAD_INPUT_ERRORS):
+        return str(error)
     if isinstance(error, NoNonlinearSolverError):
         return f"optimizes needs a nonlinear solver: {error}; use rrt, or a Drake build that has one"
     if isinstance(error, UnknownNameError):
         return f"the kitchen's model files do not match its kitchen map: {error}"
-    return f"the kitchen could not be set up: {error}"
+    if isinstance(error, WorldError):
+        return f"the kitchen could not be set up: {error}"
+    return None
 
 
 def main(argv: Sequence[str] | None = None, started: float | None = None) -> int:
     """Run the command line; returns the exit code (see ``ExitCode``)."""
-    started = time.perf_counter() if started is None else started
+    run_started = time.perf_counter() if started is None else started
     args = build_parser().parse_args(argv)
-    try:
-        if args.mode == "replay":
-            return run_replay(args, started)
-        return run_plan(args, started)
-    except BAD_INPUT_ERRORS as error:
-        print(f"error: {error}", file=sys.stderr)
-        return int(ExitCode.BAD_INPUT)
-    except (WorldError, NoNonlinearSolverError) as error:
-        print(f"error: {_setup_problem(error)}", file=sys.stderr)
-        return int(ExitCode.BAD_INPUT)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return int(ExitCode.INTERRUPTED)
-    except Exception as error:  # a bug: say so, with the traceback, and exit 3
-        traceback.print_exc()
-        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
-        return int(ExitCode.INTERNAL_ERROR)
+    if args.mode == "replay":
+        return exit_code_of(lambda: run_replay(args, run_started), _bad_input_line)
+    return exit_code_of(lambda: run_plan(args, run_started), _bad_input_line)
