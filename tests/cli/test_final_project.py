@@ -226,7 +226,8 @@ def test_an_unwritable_out_is_refused_before_planning(
     argv = ["rrt", "--out", str(out)] if mode == "rrt" else ["replay", str(tmp_path), "--out", str(out)]
     assert main(argv) == 2
     captured = capsys.readouterr()
-    assert captured.err.strip() == f"error: --out {out}: {blocker} is a file, not a folder"
+    culprit = f"{blocker} " if where == "under a file" else ""
+    assert captured.err.strip() == f"error: --out {out}: {culprit}is a file, not a folder"
     assert captured.out == ""  # nothing was planned or replayed
     assert blocker.read_text() == "not a folder"
 

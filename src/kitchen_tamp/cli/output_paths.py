@@ -23,7 +23,8 @@ def _check_writable(folder: Path, given: Path, option: str) -> None:
     in ``folder`` or create it."""
     existing = _nearest_existing(folder)
     if not existing.is_dir():
-        raise OutputPathError(f"{option} {given}: {existing} is a file, not a folder")
+        where = "" if existing == given.absolute() else f"{existing} "
+        raise OutputPathError(f"{option} {given}: {where}is a file, not a folder")
     if not os.access(existing, os.W_OK | os.X_OK):
         raise OutputPathError(f"{option} {given}: no permission to write in {existing}")
 
