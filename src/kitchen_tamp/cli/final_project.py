@@ -177,7 +177,7 @@ def _stuck_step(outcome: SesameRefinement) -> tuple[int | None, str | None]:
 
 def _start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
     live = LiveViewer(kitchen)
-    _say(f"live viewer (Meshcat) at {live.url} while this program runs; replay.html stays")
+    _say(f"live viewer (Meshcat) at {live.url} while this program runs")
     return live
 
 
