@@ -18,6 +18,7 @@ from kitchen_tamp.execute.browser_replay import (
     MAX_FRAMES,
     MAX_FRAMES_PER_SECOND,
     _changing_frames,
+    camera_eye,
     record_timeline,
     replay_frame_rate,
     write_timeline_replay,
@@ -27,7 +28,7 @@ from kitchen_tamp.execute.untextured_meshes import untextured_obj_text
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
-from kitchen_tamp.world import VisualKind, panda_urdf_path, visual_shapes
+from kitchen_tamp.world import CameraView, VisualKind, panda_urdf_path, visual_shapes
 
 from .headless_chromium import HeadlessChromium, find_chromium
 
@@ -181,3 +182,17 @@ def test_final_project_serves_the_live_viewer_without_waiting_for_anyone(
     assert main(["replay", str(tmp_path), "--meshcat", "--no-video"]) == 0
     assert re.search(r"live viewer \(Meshcat\) at http://\S+:\d+", capsys.readouterr().out)
     assert not (tmp_path / HTML_FILE).exists()  # --no-video: neither replay.gif nor replay.html
+
+
+def test_page_camera_looks_along_the_gifs_line_of_sight() -> None:
+    import pybullet as p
+
+    view = CameraView(target=(0.4, -0.1, 0.6), distance=2.5, yaw=-60.0, pitch=-28.0)
+    matrix = np.array(
+        p.computeViewMatrixFromYawPitchRoll(view.target, view.distance, view.yaw, view.pitch, 0.0, 2)
+    ).reshape(4, 4).T  # PyBullet's matrices are column-major
+    gif_eye = -matrix[:3, :3].T @ matrix[:3, 3]
+    target = np.asarray(view.target)
+    gif_direction = (gif_eye - target) / np.linalg.norm(gif_eye - target)
+    page_direction = (camera_eye(view) - target) / np.linalg.norm(camera_eye(view) - target)
+    assert np.allclose(gif_direction, page_direction, atol=1e-6)
