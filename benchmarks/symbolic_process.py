@@ -33,7 +33,8 @@ REPO = Path(__file__).resolve().parents[1]
 ENTRY_SCRIPT = REPO / "pddl" / "activity_planning.py"
 PROCESS_SEARCHES = ("bfs", "astar", "gbfs")
 
-PYPERPLAN_ARGS = {"bfs": ["-s", "bfs"], "astar": ["-s", "astar", "-H", "hmax"], "gbfs": ["-s", "gbf", "-H", "hff"]}
+PYPERPLAN_ARGS = {"bfs": ["-s", "bfs"], "astar": ["-s", "astar", "-H", "hmax"],
+                  "gbfs": ["-s", "gbf", "-H", "hff"]}
 FAST_DOWNWARD_ARGS = {"bfs": ["--search", "astar(blind())"], "astar": ["--search", "astar(hmax())"],
                       "gbfs": ["--alias", "lama-first"]}
 
@@ -71,7 +72,8 @@ def _plan_length(planner: str, completed: subprocess.CompletedProcess[str]) -> i
     return int(match.group(1)) if match else None
 
 
-def _run_once(command: list[str], planner: str, workdir: Path, timeout: float) -> tuple[float | None, int | None]:
+def _run_once(command: list[str], planner: str, workdir: Path,
+              timeout: float) -> tuple[float | None, int | None]:
     start = time.perf_counter()
     try:
         # pyperplan's grounding iterates over sets: a fixed hash seed makes its rows reproducible.

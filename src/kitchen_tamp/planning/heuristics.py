@@ -66,24 +66,24 @@ Entry = tuple[int, int, int]
 """A relevant action in the relaxed exploration: (precondition mask, add mask, action index)."""
 
 
-def _entries_by_key(task: Task, entries: list[Entry]) -> tuple[int, dict[int, tuple[Entry, ...]], tuple[Entry, ...]]:
-    """The entries grouped by key atom: each action's precondition atom used by the fewest actions.
+KeyedEntries = tuple[int, dict[int, tuple[Entry, ...]], tuple[Entry, ...]]
+"""Entries grouped by key atom: (mask of the key atoms, groups by key bit, entries without preconditions)."""
 
-    As in ``Task.successor_table``: an action cannot fire before its key atom
-    is reached, so a relaxed exploration only tests the groups whose key it has
-    reached. Returns the mask of key atoms, the groups by key bit, and the
-    actions without preconditions.
+
+def _entries_by_key(task: Task, entries: list[Entry]) -> KeyedEntries:
+    """The entries grouped by their action's key atom (``Task.key_atoms``).
+
+    An action cannot fire before its key atom is reached, so a relaxed
+    exploration only tests the groups whose key it has reached. Returns the
+    mask of key atoms, the groups by key bit, and the actions without
+    preconditions.
     """
-    uses = [0] * len(task.atoms)
-    for action in task.actions:
-        for atom in action.pre_ids:
-            uses[atom] += 1
+    keys = task.key_atoms()
     keyed: dict[int, list[Entry]] = {}
     unkeyed: list[Entry] = []
     for entry in entries:
-        pre_ids = task.actions[entry[2]].pre_ids
-        if pre_ids:
-            key = min(pre_ids, key=lambda atom: (uses[atom], atom))
+        key = keys[entry[2]]
+        if key >= 0:
             keyed.setdefault(1 << key, []).append(entry)
         else:
             unkeyed.append(entry)
