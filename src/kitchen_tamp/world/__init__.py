@@ -3,7 +3,7 @@
 A ``Scene`` owns one physics client and its bodies (looked up by name); a
 ``Robot`` gives an arm's configuration, gripper and forward kinematics;
 ``InverseKinematics`` solves for tool poses with seeded restarts; a
-``CollisionChecker`` answers batch validity queries for motion planners;
+``PyBulletCollisionChecker`` answers batch validity queries for motion planners;
 ``render`` takes headless pictures.
 """
 
@@ -13,7 +13,7 @@ from kitchen_tamp.world.camera import CameraView, Image, render, tile, write_png
 from kitchen_tamp.world.collision import (
     AllowedContact,
     BoolArray,
-    CollisionChecker,
+    PyBulletCollisionChecker,
     make_collision_checker,
 )
 from kitchen_tamp.world.errors import SceneClosedError, UnknownNameError, WorldError
@@ -41,13 +41,13 @@ __all__ = [
     "BoolArray",
     "BoxShape",
     "CameraView",
-    "CollisionChecker",
     "FloatArray",
     "IkOptions",
     "Image",
     "InverseKinematics",
     "JointInfo",
     "Pose",
+    "PyBulletCollisionChecker",
     "Robot",
     "Scene",
     "SceneClosedError",
