@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
-from typing import Literal, TypeVar
+from typing import TypeVar
 
 from lark import Lark
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
@@ -22,7 +22,7 @@ from pddl.parser.domain import DomainTransformer
 from pddl.parser.problem import ProblemTransformer
 
 from kitchen_tamp.planning.errors import PlanningInputError
-from kitchen_tamp.planning.grammar_cache import parse_with, pddl_parser
+from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
 
 T = TypeVar("T")
 
@@ -105,7 +105,7 @@ def _syntax_error(error: Exception, path: Path, what: str) -> PlanningInputError
 
 
 @cache
-def _lark_parser(start: Literal["domain", "problem"]) -> Lark:
+def _lark_parser(start: StartSymbol) -> Lark:
     """Each process loads each parser once (from the grammar cache, see ``grammar_cache``)."""
     return pddl_parser(start)
 
