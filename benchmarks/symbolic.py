@@ -20,8 +20,9 @@ Pairings (ours / pyperplan / Fast Downward):
 - ``astar``: A* with h_max / ``astar`` + ``hmax`` / ``astar(hmax())``
 - ``ehc``: enforced hill climbing, h_FF, helpful actions first / ``ehs`` + ``hff``
   with preferred operators (pruning, no fallback) / ``ehc(h, preferred=[h])``
-- ``gbfs``: greedy best-first, h_FF, preferred-operator queue / ``gbf`` + ``hff`` with
-  preferred operators (pruning) / ``eager_greedy([h], preferred=[h], boost=1000)``
+- ``gbfs``: greedy best-first, h_FF, alternating preferred/all queues boosted on progress /
+  ``gbf`` + ``hff`` with preferred operators (pruning) /
+  ``eager_greedy([h], preferred=[h], boost=1000)``
 - ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
   pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
 
