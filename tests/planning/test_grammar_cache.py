@@ -114,6 +114,18 @@ def test_a_read_only_cache_directory_still_parses(builds: list[str]) -> None:
         cache_directory().chmod(0o700)
 
 
+def test_without_a_home_directory_the_parser_is_built(
+        builds: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("XDG_CACHE_HOME")
+
+    def no_home() -> Path:
+        raise RuntimeError("Could not determine home directory.")
+
+    monkeypatch.setattr(Path, "home", no_home)
+    assert parses_the_kitchen()
+    assert builds == ["domain", "problem"]
+
+
 def test_xdg_cache_home_must_be_absolute(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("XDG_CACHE_HOME", "relative/cache")
     assert cache_directory() == Path.home() / ".cache" / "kitchen_tamp"

@@ -74,11 +74,15 @@ def pddl_parser(start: StartSymbol) -> Lark:
     """The parser for ``start``: loaded from the cache if it holds a current one, else built and cached."""
     grammar = GRAMMAR_FILE.read_text(encoding="utf-8")
     key = cache_key(start, grammar)
-    path = cache_path(start, key)
-    parser = _load(path, key)
+    try:
+        path: Path | None = cache_path(start, key)
+    except RuntimeError:  # no home directory to be found: no cache, not an error
+        path = None
+    parser = _load(path, key) if path is not None else None
     if parser is None:
         parser = build_parser(start, grammar)
-        _store(parser, path, key)
+        if path is not None:
+            _store(parser, path, key)
     return parser
 
 
