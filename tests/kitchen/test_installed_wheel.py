@@ -26,7 +26,6 @@ def _run(
 def _clean_environment(cache: Path) -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
     env["XDG_CACHE_HOME"] = str(cache)
-    env.pop("KITCHEN_TAMP_CACHE", None)
     return env
 
 

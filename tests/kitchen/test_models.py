@@ -44,7 +44,7 @@ def test_models_are_written_to_the_cache_not_the_working_folder(
     work = tmp_path / "work"
     work.mkdir()
     monkeypatch.chdir(work)
-    monkeypatch.setenv("KITCHEN_TAMP_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     files = model_files(read_scene(default_scene_path()))
     assert files.kitchen.is_relative_to(tmp_path / "cache")
     assert list(work.iterdir()) == []

@@ -19,6 +19,7 @@ from typing import Final
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.kitchen.scene_spec import DrawerSpec, KitchenSpec, Rgba, SurfaceSpec, Vector
+from kitchen_tamp.planning.grammar_cache import cache_directory
 
 KITCHEN_FILE: Final = "kitchen.urdf"
 CABINET_LINK: Final = "cabinet"
@@ -26,8 +27,6 @@ MOUNT_LINK: Final = "robot_mount"
 DRAWER_MASS: Final = 2.0
 BURNER_COLOUR: Final = (0.75, 0.15, 0.10, 1.0)
 HANDLE_COLOUR: Final = (0.75, 0.75, 0.78, 1.0)
-CACHE_VARIABLE: Final = "KITCHEN_TAMP_CACHE"
-"""Environment variable naming the folder for generated models (default: the user's cache)."""
 
 
 def joint_name(drawer: str) -> str:
@@ -269,14 +268,6 @@ class ModelFiles:
     boxes: MappingProxyType[str, Path]
 
 
-def cache_root() -> Path:
-    """``$KITCHEN_TAMP_CACHE``, else ``$XDG_CACHE_HOME/kitchen_tamp``, else ``~/.cache/kitchen_tamp``."""
-    if os.environ.get(CACHE_VARIABLE):
-        return Path(os.environ[CACHE_VARIABLE])
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "kitchen_tamp"
-
-
 def write_models(spec: KitchenSpec, folder: Path) -> dict[str, Path]:
     """Write the kitchen's URDFs into ``folder`` (atomically, skipping files already equal)."""
     paths = {}
@@ -289,14 +280,15 @@ def write_models(spec: KitchenSpec, folder: Path) -> dict[str, Path]:
 
 
 def model_files(spec: KitchenSpec) -> ModelFiles:
-    """The kitchen's URDFs, written once into a cache folder named by their content (the
-    system's temporary folder if the cache cannot be written)."""
+    """The kitchen's URDFs, written once into a folder named by their content in the user's
+    cache (the one the PDDL parsers use), or the system's temporary folder if that cannot be
+    written."""
     texts = model_texts(spec)
     digest = hashlib.sha256("\0".join(f"{k}\0{v}" for k, v in sorted(texts.items())).encode()).hexdigest()
     folder_name = f"models-{digest[:20]}"
     try:
-        paths = write_models(spec, cache_root() / folder_name)
-    except OSError:
+        paths = write_models(spec, cache_directory() / folder_name)
+    except (OSError, RuntimeError):  # RuntimeError: no home directory to find the cache in
         paths = write_models(spec, Path(tempfile.gettempdir()) / f"kitchen_tamp-{os.getuid()}" / folder_name)
     return ModelFiles(
         paths[KITCHEN_FILE], MappingProxyType({b.name: paths[f"{b.name}.urdf"] for b in spec.boxes})
