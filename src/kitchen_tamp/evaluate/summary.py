@@ -79,7 +79,7 @@ def random_section(manifest: Rows, rows: Sequence[dict[str, str]]) -> list[str]:
             by_problem.setdefault(row["problem"], []).append(row)
     run = [name for name in names if name in by_problem]
     every = sum(all(r["status"] == "solved" for r in by_problem[name]) for name in run)
-    some = sum(any(r["status"] == "solved" for r in by_problem[name]) for name in run)
+    never = sorted(name for name in run if not any(r["status"] == "solved" for r in by_problem[name]))
     first_try = sum(entry["layout_attempts"] == "1" for entry in manifest)
     lengths = sorted(int(entry["plan_length"]) for entry in manifest if entry["plan_length"])
     return [
@@ -90,7 +90,8 @@ def random_section(manifest: Rows, rows: Sequence[dict[str, str]]) -> list[str]:
         f"(shortest plans of {lengths[0]} to {lengths[-1]} actions)" if lengths else
         f"- symbolically solvable: 0/{len(manifest)}",
         f"- run in this sweep: {len(run)}; solved by the system with every seed: {every}, "
-        f"with at least one: {some}",
+        f"with at least one: {len(run) - len(never)}",
+        f"- solved with no seed: {', '.join(never) or 'none'}",
         "",
     ]
 
