@@ -25,7 +25,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.world import CollisionChecker
+from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 PROBLEM = Path(__file__).resolve().parents[1] / "pddl" / "problem.pddl"
@@ -35,7 +35,7 @@ BoolArray = npt.NDArray[np.bool_]
 Validity = Callable[[FloatArray], BoolArray]
 
 
-def drake_twin(kitchen: KitchenScene, checker: CollisionChecker) -> DrakeCollisionChecker:
+def drake_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
     """The Drake model of the scene ``checker`` captured, with its allowed contacts and margin."""
     description = describe_collision_checker(checker)
     return DrakeCollisionChecker(description, margin=checker.margin)
@@ -70,7 +70,7 @@ def cpu_us_per_call(function: Callable[[FloatArray], object], qs: FloatArray) ->
 
 
 def compare(
-    scene: str, pybullet: CollisionChecker, drake: DrakeCollisionChecker, qs: FloatArray
+    scene: str, pybullet: PyBulletCollisionChecker, drake: DrakeCollisionChecker, qs: FloatArray
 ) -> list[str]:
     """Timings of both checkers and a paragraph on their agreement."""
     timings, verdicts = [], {}

@@ -49,6 +49,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from motion import MotionQuery, kitchen_queries  # benchmarks/motion.py, beside this script
 
+from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import (
     ConfigurationSpace,
     InvalidMotionQueryError,
@@ -61,13 +62,12 @@ from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.trajectory_program import SignedDistanceFunction, TrajectoryOptimizationSettings
 from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
-    VERIFICATION_RESOLUTION,
     MotionSolution,
     SamplingMotionBackend,
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.refine_action import PLANNING_MARGIN
-from kitchen_tamp.world import CollisionChecker as PyBulletChecker
+from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 ORIGINAL_SETTINGS = replace(DEFAULT_SETTINGS, num_waypoints=50, samples_between_waypoints=0)
@@ -92,7 +92,7 @@ class Case:
     """A query with the models the variants plan and verify with."""
 
     query: MotionQuery
-    strict: PyBulletChecker
+    strict: PyBulletCollisionChecker
     planning: DrakeCollisionChecker
     space: ConfigurationSpace
     seed: tuple[int, int]
@@ -117,7 +117,7 @@ def _no_obstacles(q: JointConfiguration) -> tuple[float, JointConfiguration]:
 
 def _verified(path: JointPath, case: Case) -> bool:
     ends_held = np.allclose(path[0], case.query.start) and np.allclose(path[-1], case.query.goal)
-    return ends_held and check_path_densely(path, case.strict, VERIFICATION_RESOLUTION).collision_free
+    return ends_held and check_path_densely(path, case.strict, JUDGE_RESOLUTION_RAD).collision_free
 
 
 def _enough_waypoints(
@@ -207,7 +207,7 @@ YARDSTICK = "6 RRT-Connect + shortcut"
 
 def prepare(query: MotionQuery, seed: tuple[int, int]) -> Case:
     """The query's Drake model with the pipeline's planning margin, and the yardstick's path."""
-    if not isinstance(query.checker, PyBulletChecker):
+    if not isinstance(query.checker, PyBulletCollisionChecker):
         raise TypeError(f"{query.name}: expected a PyBullet checker, got {type(query.checker).__name__}")
     strict = query.checker
     description = describe_collision_checker(strict)
@@ -215,7 +215,7 @@ def prepare(query: MotionQuery, seed: tuple[int, int]) -> Case:
     if not planning.is_valid(np.stack([query.start, query.goal])).all():
         planning = DrakeCollisionChecker(description, margin=0.0)  # an end is closer: no slack
     straight = np.stack([query.start, query.goal])
-    hard = not check_path_densely(straight, strict, VERIFICATION_RESOLUTION).collision_free
+    hard = not check_path_densely(straight, strict, JUDGE_RESOLUTION_RAD).collision_free
     case = Case(query, strict, planning, ConfigurationSpace(planning.lower, planning.upper), seed, hard)
     clock = time.process_time()
     reference = SamplingMotionBackend().solve(
@@ -333,7 +333,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         f"{len(cases)} kitchen queries ({args.queries} per seed, seeds {' '.join(map(str, args.seeds))}), "
         f"{hard} hard; optimisation: {nonlinear_solver().solver_id().name()} on Drake signed distance, "
         f"margin {DEFAULT_SETTINGS.collision_margin} m; "
-        f"verified: PyBullet, every {VERIFICATION_RESOLUTION} rad"
+        f"verified: PyBullet, every {JUDGE_RESOLUTION_RAD} rad"
     )
     print()
     print(format_table([summarise(v, cases, results) for v in VARIANTS], len(cases), hard))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from kitchen_tamp.joint_spacing import coarse_to_fine_order
 from kitchen_tamp.motion import (
     MOTION_PLANNERS,
     ConfigurationSpace,
@@ -20,7 +21,6 @@ from kitchen_tamp.motion import (
     resample_path,
 )
 from kitchen_tamp.motion.configuration_tree import ConfigurationTree
-from kitchen_tamp.motion.segment_checking import coarse_to_fine_order
 from tests.motion.toy_worlds import BoxBallWorld
 
 WALL = BoxBallWorld(boxes=[((0.45, 0.0), (0.55, 1.0))])

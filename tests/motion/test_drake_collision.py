@@ -16,7 +16,13 @@ from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targ
 from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
-from kitchen_tamp.world import AllowedContact, CollisionChecker, Pose, make_collision_checker, panda_urdf_path
+from kitchen_tamp.world import (
+    AllowedContact,
+    Pose,
+    PyBulletCollisionChecker,
+    make_collision_checker,
+    panda_urdf_path,
+)
 from kitchen_tamp.world.scene_description import describe_collision_checker
 from tests.kitchen.conftest import REPO
 
@@ -27,11 +33,11 @@ NEAR_CONTACT = 0.003
 
 @dataclass(frozen=True, eq=False)
 class CheckerPair:
-    pybullet: CollisionChecker
+    pybullet: PyBulletCollisionChecker
     drake: DrakeCollisionChecker
 
 
-def drake_twin(kitchen: KitchenScene, checker: CollisionChecker) -> DrakeCollisionChecker:
+def drake_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
     paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
     paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
     return DrakeCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)

@@ -14,7 +14,7 @@ from kitchen_tamp.planning import GroundAction, load_task
 from kitchen_tamp.refinement import SamplingMotionBackend, kitchen_sesame
 from kitchen_tamp.refinement.kitchen_sesame import SesameBudgets, refine_with_sesame
 from kitchen_tamp.refinement.motion_backend import MotionBackend
-from kitchen_tamp.refinement.refine_action import StepRecord
+from kitchen_tamp.refinement.refine_action import ActionSampleRecord
 
 PROBLEM = Path(__file__).resolve().parents[2] / "pddl" / "problem.pddl"
 
@@ -43,12 +43,20 @@ def place_refused_until_second_pick(monkeypatch: pytest.MonkeyPatch) -> None:
         backend: MotionBackend,
         rng: np.random.Generator,
         **options: object,
-    ) -> tuple[object, StepRecord]:
+    ) -> tuple[object, ActionSampleRecord]:
         if action.name == "pickUp" and action.args[0] == "spam":
             picks["count"] += 1
         if action.name == "placeIn" and picks["count"] < 2:
-            return None, StepRecord(
-                index, action.text, "test", False, 1, 0, 0, {}, 0, ("refused by the test",)
+            return None, ActionSampleRecord(
+                index=index,
+                action=action.text,
+                planner="test",
+                solved=False,
+                skill_samples=0,
+                motion_attempts=0,
+                motion={},
+                waypoints=0,
+                rejections=("refused by the test",),
             )
         return real(kitchen, index, action, backend, rng, **options)  # type: ignore[arg-type]
 

@@ -14,8 +14,8 @@ from kitchen_tamp.world import (
     BASE_LINK,
     AllowedContact,
     Body,
-    CollisionChecker,
     Pose,
+    PyBulletCollisionChecker,
     Robot,
     Scene,
     SceneState,
@@ -104,7 +104,11 @@ def _random_configurations(robot: Robot, count: int, seed: int) -> np.ndarray:
 
 
 def _assert_agrees(
-    scene: Scene, robot: Robot, checker: CollisionChecker, qs: np.ndarray, allowed: Sequence[AllowedContact]
+    scene: Scene,
+    robot: Robot,
+    checker: PyBulletCollisionChecker,
+    qs: np.ndarray,
+    allowed: Sequence[AllowedContact],
 ) -> None:
     before = scene.save_state()
     fast_valid = checker.is_valid(qs)

@@ -48,7 +48,7 @@ from kitchen_tamp.bilevel.results import (
     RefinedPlan,
     RefinedStep,
     SampleEvent,
-    StepRecord,
+    StepSamplingRecord,
 )
 from kitchen_tamp.bilevel.sampling_session import SampleCallback
 from kitchen_tamp.bilevel.sesame import backtracking_refinement, greedy_refinement, sesame
@@ -75,7 +75,7 @@ __all__ = [
     "SampleEvent",
     "SamplingFailure",
     "StateNode",
-    "StepRecord",
+    "StepSamplingRecord",
     "Trajectory",
     "TrajectorySampler",
     "abstract_bfs",

@@ -57,7 +57,7 @@ class RefinedPlan(Generic[X, U, S, A]):
 
 
 @dataclass(frozen=True)
-class StepRecord(Generic[A]):
+class StepSamplingRecord(Generic[A]):
     """What refining step ``index`` of abstract plan ``plan_index`` took, over all its visits.
 
     ``backtracks`` counts the times this step was sampled again because a later
@@ -79,7 +79,7 @@ class PlanAttempt(Generic[S, A]):
 
     index: int
     abstract_plan: AbstractPlan[S, A]
-    steps: tuple[StepRecord[A], ...]
+    steps: tuple[StepSamplingRecord[A], ...]
     outcome: Outcome
     detail: str
 

@@ -12,10 +12,9 @@ from kitchen_tamp.execute.trajectory_file import (
     read_trajectory,
     write_trajectory,
 )
-from kitchen_tamp.execute.verification import DEFAULT_RESOLUTION, Verification, verify_trajectory
+from kitchen_tamp.execute.verification import Verification, verify_trajectory
 
 __all__ = [
-    "DEFAULT_RESOLUTION",
     "FRAME_SECONDS",
     "REPORT_FILE",
     "TRAJECTORY_FILE",

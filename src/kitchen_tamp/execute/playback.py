@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.joint_spacing import interval_count
 from kitchen_tamp.kitchen import Segment
 from kitchen_tamp.world import FloatArray
 
@@ -34,7 +35,7 @@ class SegmentSamples:
 
 def interpolate_segment(segment: Segment, joint_step: float) -> SegmentSamples:
     """Every waypoint, and between two waypoints evenly spaced states at most ``joint_step``
-    (rad, Euclidean over the joints) apart."""
+    apart by the rule of ``kitchen_tamp.joint_spacing``."""
     qs = segment.configurations
     widths = segment.gripper_widths
     drawer = segment.drawer_values
@@ -43,11 +44,10 @@ def interpolate_segment(segment: Segment, joint_step: float) -> SegmentSamples:
     parts_d: list[FloatArray] = [] if drawer is None else [drawer[:1]]
     owners: list[np.ndarray] = [np.zeros(1, dtype=int)]
     for i in range(len(qs) - 1):
-        joint_count = float(np.linalg.norm(qs[i + 1] - qs[i])) / joint_step
         linear = abs(float(widths[i + 1] - widths[i]))
         if drawer is not None:
             linear = max(linear, abs(float(drawer[i + 1] - drawer[i])))
-        count = max(1, int(np.ceil(max(joint_count, linear / LINEAR_STEP))))
+        count = max(interval_count(qs[i], qs[i + 1], joint_step), int(np.ceil(linear / LINEAR_STEP)))
         fractions = np.arange(1, count + 1, dtype=float) / count
         parts_q.append(qs[i] + fractions[:, None] * (qs[i + 1] - qs[i]))
         parts_w.append(widths[i] + fractions * (widths[i + 1] - widths[i]))

@@ -16,12 +16,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from kitchen_tamp.execute.playback import SegmentSamples, interpolate_segment
+from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.kitchen import KitchenScene, Segment, abstract_state, enter_segment, set_waypoint
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, Task, atom_text
-
-DEFAULT_RESOLUTION = 0.005
-"""Joint-space spacing (rad) of the states the verifier checks."""
 
 
 @dataclass
@@ -134,7 +132,7 @@ def verify_trajectory(
     kitchen: KitchenScene,
     task: Task,
     trajectory: KitchenTrajectory,
-    resolution: float = DEFAULT_RESOLUTION,
+    resolution: float = JUDGE_RESOLUTION_RAD,
     on_step: Callable[[int, str], None] | None = None,
 ) -> Verification:
     """Replay ``trajectory`` in ``kitchen`` (freshly built for ``task``) and check it.

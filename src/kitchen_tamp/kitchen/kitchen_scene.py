@@ -14,10 +14,10 @@ from kitchen_tamp.kitchen.regions import SupportRegion, box_corners, box_size, s
 from kitchen_tamp.world import (
     AllowedContact,
     Body,
-    CollisionChecker,
     FloatArray,
     InverseKinematics,
     Pose,
+    PyBulletCollisionChecker,
     Robot,
     Scene,
     make_collision_checker,
@@ -152,7 +152,7 @@ class KitchenScene:
     # -- checking ------------------------------------------------------------------------------------
     def collision_checker(
         self, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
-    ) -> CollisionChecker:
+    ) -> PyBulletCollisionChecker:
         """A checker of the scene as it is now (held box attached, drawers where they are);
         with a ``margin`` (m), configurations closer than that to contact count as colliding."""
         return make_collision_checker(self.scene, self.robot, allowed, margin)
@@ -160,7 +160,7 @@ class KitchenScene:
     def collision_free_ik(
         self,
         world_from_tool: Pose,
-        checker: CollisionChecker,
+        checker: PyBulletCollisionChecker,
         rng: np.random.Generator,
         max_solutions: int,
     ) -> FloatArray | None:

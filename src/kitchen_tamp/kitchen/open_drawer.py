@@ -13,7 +13,7 @@ from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
 from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
-from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray, Pose
+from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
 
 
 @dataclass(frozen=True)
@@ -36,11 +36,11 @@ class OpenProblem:
     pull_direction: FloatArray
     q_now: FloatArray
     open_width: float
-    free_checker: CollisionChecker
-    clear_checker: CollisionChecker
-    handle_checker: CollisionChecker
-    released_checker: CollisionChecker
-    strict_released_checker: CollisionChecker
+    free_checker: PyBulletCollisionChecker
+    clear_checker: PyBulletCollisionChecker
+    handle_checker: PyBulletCollisionChecker
+    released_checker: PyBulletCollisionChecker
+    strict_released_checker: PyBulletCollisionChecker
     handle_contact: AllowedContact
 
 
@@ -80,7 +80,13 @@ def handle_geometry(
 
 def _checkers(
     kitchen: KitchenScene, openable: str, goal: float, clearance: float
-) -> tuple[CollisionChecker, CollisionChecker, CollisionChecker, CollisionChecker, CollisionChecker]:
+) -> tuple[
+    PyBulletCollisionChecker,
+    PyBulletCollisionChecker,
+    PyBulletCollisionChecker,
+    PyBulletCollisionChecker,
+    PyBulletCollisionChecker,
+]:
     """(free, free with ``clearance``, gripper-on-handle, released-after-pull, clear-after-pull) checkers."""
     handle = kitchen.handle_contact(openable)
     with kitchen.scene.preserved():

@@ -13,7 +13,7 @@ from kitchen_tamp.kitchen.parameters import SkillParameters
 from kitchen_tamp.kitchen.regions import box_corners
 from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
-from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray, Pose
+from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -27,13 +27,15 @@ class PickProblem:
     lift: float
     q_now: FloatArray
     open_width: float
-    free_checker: CollisionChecker
-    clear_checker: CollisionChecker
-    approach_checker: CollisionChecker
+    free_checker: PyBulletCollisionChecker
+    clear_checker: PyBulletCollisionChecker
+    approach_checker: PyBulletCollisionChecker
     finger_contact: AllowedContact
 
 
-def _holding_checker(kitchen: KitchenScene, box: str, q_grasp: FloatArray, width: float) -> CollisionChecker:
+def _holding_checker(
+    kitchen: KitchenScene, box: str, q_grasp: FloatArray, width: float
+) -> PyBulletCollisionChecker:
     """A checker of the scene with ``box`` held as it would be when grasped at ``q_grasp``."""
     with kitchen.scene.preserved():
         kitchen.robot.set_configuration(q_grasp)

@@ -14,7 +14,7 @@ from kitchen_tamp.kitchen.placements import Placement, down_face, face_along, sa
 from kitchen_tamp.kitchen.regions import SupportRegion
 from kitchen_tamp.kitchen.straight_moves import hold_still, straight_approach, straight_move
 from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
-from kitchen_tamp.world import CollisionChecker, FloatArray, Pose
+from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -29,13 +29,13 @@ class PlaceProblem:
     width: float
     q_now: FloatArray
     open_width: float
-    carrying_checker: CollisionChecker
-    clear_checker: CollisionChecker
+    carrying_checker: PyBulletCollisionChecker
+    clear_checker: PyBulletCollisionChecker
 
 
 def _released_checkers(
     kitchen: KitchenScene, box: str, q_place: FloatArray, clearance: float
-) -> tuple[CollisionChecker, CollisionChecker]:
+) -> tuple[PyBulletCollisionChecker, PyBulletCollisionChecker]:
     """(fingers may touch the box, ``clearance`` kept from everything) checkers of the scene
     after letting go at ``q_place``."""
     robot = kitchen.robot

@@ -6,7 +6,7 @@ import numpy as np
 
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
-from kitchen_tamp.world import CollisionChecker, FloatArray, Pose, VectorLike, straight_line
+from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker, VectorLike, straight_line
 
 
 def straight_move(
@@ -42,8 +42,8 @@ def straight_approach(
 def reach_along_tool_axis(
     kitchen: KitchenScene,
     world_from_tool: Pose,
-    contact_checker: CollisionChecker,
-    free_checker: CollisionChecker,
+    contact_checker: PyBulletCollisionChecker,
+    free_checker: PyBulletCollisionChecker,
     rng: np.random.Generator,
     parameters: SkillParameters,
 ) -> tuple[FloatArray, FloatArray] | None:

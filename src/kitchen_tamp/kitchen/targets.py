@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.world import AllowedContact, CollisionChecker, FloatArray
+from kitchen_tamp.world import AllowedContact, FloatArray, PyBulletCollisionChecker
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,7 +58,7 @@ class SkillTargets:
     held_box: str | None
     gripper_width: float
     segments: tuple[Segment, ...]
-    free_space_checker: CollisionChecker
+    free_space_checker: PyBulletCollisionChecker
     samples_tried: int
 
     def __post_init__(self) -> None:

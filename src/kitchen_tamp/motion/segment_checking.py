@@ -1,9 +1,9 @@
 """Segment checks built from batched configuration checks, counted.
 
-A straight joint-space segment is checked by interpolating it so that no two
-consecutive checked configurations are further apart than the resolution
-(Euclidean joint-space distance), endpoints first, then interior points from
-coarse to fine in growing batches, stopping at the first collision.
+A straight joint-space segment is checked at the states ``kitchen_tamp.joint_spacing``
+defines (the rule every checker and the judge share), endpoints first, then
+interior points from coarse to fine in growing batches, stopping at the first
+collision.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import numpy.typing as npt
 
+from kitchen_tamp.joint_spacing import interior_fractions
 from kitchen_tamp.motion.collision_checker import (
     CollisionChecker,
     JointConfiguration,
@@ -22,18 +22,6 @@ from kitchen_tamp.motion.collision_checker import (
 
 FIRST_BATCH_SIZE = 16
 """Interior configurations checked in the first batch; later batches double."""
-
-
-def interval_count(q0: JointConfiguration, q1: JointConfiguration, resolution: float) -> int:
-    """Number of equal intervals the segment q0 -> q1 is cut into at `resolution`."""
-    return max(1, math.ceil(float(np.linalg.norm(q1 - q0)) / resolution))
-
-
-def coarse_to_fine_order(count: int) -> npt.NDArray[np.intp]:
-    """A permutation of range(count) visiting a halving grid: middle first, then quarters..."""
-    positions = np.arange(1, count + 1)
-    lowest_set_bit = positions & -positions
-    return np.argsort(-lowest_set_bit, kind="stable")
 
 
 def _batches(count: int) -> list[slice]:
@@ -80,11 +68,8 @@ class CountingSegmentChecker:
         endpoints = [q for q, check in ((q0, check_start), (q1, check_end)) if check]
         if endpoints and not np.all(self.are_valid(np.stack(endpoints))):
             return False
-        intervals = interval_count(q0, q1, self.resolution)
-        if intervals == 1:
-            return True
-        fractions = np.arange(1, intervals)[coarse_to_fine_order(intervals - 1)] / intervals
-        for batch in _batches(intervals - 1):
+        fractions = interior_fractions(q0, q1, self.resolution)
+        for batch in _batches(len(fractions)):
             qs = q0 + fractions[batch, np.newaxis] * (q1 - q0)
             if not np.all(self.are_valid(qs)):
                 return False

@@ -22,9 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.joint_spacing import interval_count
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath, path_length, segment_lengths
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker, interval_count
+from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 MIN_IMPROVEMENT = 1e-9
 """A shortcut must shorten the path by more than this (radians) to be taken."""

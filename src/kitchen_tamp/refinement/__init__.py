@@ -4,22 +4,20 @@ and the bilevel planner backtracks when a step cannot be refined."""
 
 from kitchen_tamp.refinement.kitchen_sesame import SesameBudgets, SesameRefinement, refine_with_sesame
 from kitchen_tamp.refinement.motion_backend import (
-    VERIFICATION_RESOLUTION,
     MotionBackend,
     MotionSolution,
     SamplingMotionBackend,
 )
-from kitchen_tamp.refinement.refine_action import RefinedKitchenPlan, StepRecord, refine_action
+from kitchen_tamp.refinement.refine_action import ActionSampleRecord, RefinedKitchenPlan, refine_action
 
 __all__ = [
-    "VERIFICATION_RESOLUTION",
+    "ActionSampleRecord",
     "MotionBackend",
     "MotionSolution",
     "RefinedKitchenPlan",
     "SamplingMotionBackend",
     "SesameBudgets",
     "SesameRefinement",
-    "StepRecord",
     "refine_action",
     "refine_with_sesame",
 ]

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Final
 
 import numpy as np
 
@@ -29,17 +30,8 @@ from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, State, Task
 from kitchen_tamp.refinement.motion_backend import MotionBackend
 from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL
-from kitchen_tamp.refinement.refine_action import RefinedKitchenPlan, StepRecord, refine_action
+from kitchen_tamp.refinement.refine_action import ActionSampleRecord, RefinedKitchenPlan, refine_action
 from kitchen_tamp.world import SceneState
-
-DEFAULT_MAX_PLANS = 5
-"""Abstract plans SeSamE may try, shortest first."""
-DEFAULT_SAMPLES_PER_STEP = 4
-"""Samples of one action (target sample + motion) per visit before stepping back."""
-DEFAULT_MAX_SAMPLES = 120
-"""Samples over the whole run."""
-DEFAULT_TIME_BUDGET_S = 900.0
-"""Far above what the sample budgets take, so the seed alone decides the result."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,12 +43,25 @@ class KitchenState:
 
 @dataclass(frozen=True)
 class SesameBudgets:
-    """How much SeSamE may try before the run fails."""
+    """How much SeSamE may try in the kitchen before the run fails.
 
-    max_plans: int = DEFAULT_MAX_PLANS
-    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP
-    max_samples: int = DEFAULT_MAX_SAMPLES
-    time_budget_s: float = DEFAULT_TIME_BUDGET_S
+    These are the kitchen's budgets, sized for samples that cost a motion plan
+    each; the generic library's defaults (``kitchen_tamp.bilevel.sesame``) are
+    sized for cheap samples and are a different thing.
+    """
+
+    max_plans: int = 5
+    """Abstract plans SeSamE may try, shortest first."""
+    samples_per_step: int = 4
+    """Samples of one action (targets + motion) per visit before stepping back."""
+    max_samples: int = 120
+    """Samples over the whole run."""
+    time_budget_s: float = 900.0
+    """Far above what the sample budgets take, so the seed alone decides the result."""
+
+
+KITCHEN_BUDGETS: Final = SesameBudgets()
+"""The kitchen's default budgets (the command line's defaults)."""
 
 
 @dataclass
@@ -67,9 +72,9 @@ class KitchenSampler:
     task: Task
     backend: MotionBackend
     collision_model: str = DEFAULT_COLLISION_MODEL
-    records: dict[int, StepRecord] = field(default_factory=dict)
+    records: dict[int, ActionSampleRecord] = field(default_factory=dict)
     """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
-    last_record: StepRecord | None = None
+    last_record: ActionSampleRecord | None = None
 
     def atoms_of(self, state: KitchenState) -> frozenset[Atom]:
         """Ψ(x): the atoms true in the snapshot."""
@@ -139,7 +144,7 @@ def refine_with_sesame(
     seed: int,
     budgets: SesameBudgets = SesameBudgets(),
     collision_model: str = DEFAULT_COLLISION_MODEL,
-    on_sample: Callable[[SampleEvent[State, GroundAction], StepRecord | None], None] | None = None,
+    on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
 ) -> SesameRefinement:
     """Run SeSamE from the scene as it is; on success the scene is left in the final state."""
     sampler = KitchenSampler(kitchen, task, backend, collision_model)
@@ -170,5 +175,5 @@ def refine_with_sesame(
     return SesameRefinement(RefinedKitchenPlan(KitchenTrajectory(tuple(steps)), records), result)
 
 
-def _renumbered(record: StepRecord, index: int) -> StepRecord:
+def _renumbered(record: ActionSampleRecord, index: int) -> ActionSampleRecord:
     return replace(record, index=index)

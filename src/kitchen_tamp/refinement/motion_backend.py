@@ -14,6 +14,7 @@ from typing import Protocol
 
 import numpy as np
 
+from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import (
     ConfigurationSpace,
     RrtConnectHyperparameters,
@@ -29,9 +30,6 @@ from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfigu
 from kitchen_tamp.motion.joint_path import JointPath
 
 Figure = float | int | str | None
-
-VERIFICATION_RESOLUTION = 0.005
-"""Joint-space spacing (rad) of the dense post-check every returned path must pass."""
 
 DETERMINISM_TIME_BUDGET_S = 600.0
 """Wall-clock budget handed to planners and smoothing: far above what their iteration
@@ -81,7 +79,7 @@ class MotionBackend(Protocol):
         rng: np.random.Generator,
     ) -> MotionSolution:
         """A path from ``start`` to ``goal`` planned with ``checker`` (which may keep a
-        margin) and free under ``strict_checker`` at ``VERIFICATION_RESOLUTION``."""
+        margin) and free under ``strict_checker`` at the judge's resolution (``JUDGE_RESOLUTION_RAD``)."""
         ...
 
 
@@ -101,7 +99,7 @@ class SamplingMotionBackend:
     shortcut: ShortcutHyperparameters = field(
         default_factory=lambda: ShortcutHyperparameters(max_iterations=60)
     )
-    dense_resolution: float = VERIFICATION_RESOLUTION
+    dense_resolution: float = JUDGE_RESOLUTION_RAD
 
     def __post_init__(self) -> None:
         if self.planner not in ("rrt", "rrt_connect"):

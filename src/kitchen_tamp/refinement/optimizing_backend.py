@@ -25,13 +25,13 @@ from typing import Protocol
 
 import numpy as np
 
+from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import ConfigurationSpace, InvalidMotionQueryError, check_path_densely, path_length
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.trajectory_program import TrajectoryOptimizationSettings
 from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
-    VERIFICATION_RESOLUTION,
     BoundedCollisionChecker,
     Figure,
     MotionSolution,
@@ -64,7 +64,7 @@ class OptimizingMotionBackend:
 
     settings: TrajectoryOptimizationSettings = DEFAULT_SETTINGS
     reference: SamplingMotionBackend = field(default_factory=SamplingMotionBackend)
-    dense_resolution: float = VERIFICATION_RESOLUTION
+    dense_resolution: float = JUDGE_RESOLUTION_RAD
 
     @property
     def name(self) -> str:

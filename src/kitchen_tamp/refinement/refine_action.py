@@ -24,16 +24,16 @@ PLANNING_MARGIN = 0.003
 and without slack a path can graze an obstacle between two checks."""
 
 
-@dataclass(frozen=True)
-class StepRecord:
-    """What refining one action took. ``figures`` are deterministic for a seed;
-    ``seconds`` are wall-clock and belong under a report's timing."""
+@dataclass(frozen=True, kw_only=True)
+class ActionSampleRecord:
+    """What one sample of an action (its skill's targets, then motion to them) took.
+    ``figures`` are deterministic for a seed; ``seconds`` are wall-clock and belong
+    under a report's timing."""
 
     index: int
     action: str
     planner: str
     solved: bool
-    target_samples: int
     skill_samples: int
     motion_attempts: int
     motion: Mapping[str, Figure]
@@ -47,7 +47,6 @@ class StepRecord:
             "action": self.action,
             "planner": self.planner,
             "solved": self.solved,
-            "target_samples": self.target_samples,
             "skill_samples": self.skill_samples,
             "motion_attempts": self.motion_attempts,
             "motion": dict(self.motion),
@@ -61,7 +60,7 @@ class RefinedKitchenPlan:
     """A refined plan and one record per action."""
 
     trajectory: KitchenTrajectory
-    records: tuple[StepRecord, ...]
+    records: tuple[ActionSampleRecord, ...]
 
 
 def refine_action(
@@ -72,7 +71,7 @@ def refine_action(
     rng: np.random.Generator,
     planning_margin: float = PLANNING_MARGIN,
     collision_model: str = DEFAULT_COLLISION_MODEL,
-) -> tuple[ActionTrajectory | None, StepRecord]:
+) -> tuple[ActionTrajectory | None, ActionSampleRecord]:
     """One sample of ``action``: sample its skill's targets and connect the arm to them.
     On success the scene is left in the state after the action. Returns (trajectory or
     None, record); resampling and stepping back are the caller's (SeSamE's) business."""
@@ -81,8 +80,17 @@ def refine_action(
         targets = sample_action_targets(kitchen, action, rng)
     except SkillFailure as failure:
         seconds = {"skills_s": time.perf_counter() - clock, "motion_s": 0.0}
-        return None, StepRecord(
-            index, action.text, backend.name, False, 1, 0, 0, {}, 0, (str(failure),), seconds
+        return None, ActionSampleRecord(
+            index=index,
+            action=action.text,
+            planner=backend.name,
+            solved=False,
+            skill_samples=0,
+            motion_attempts=0,
+            motion={},
+            waypoints=0,
+            rejections=(str(failure),),
+            seconds=seconds,
         )
     skills_s = time.perf_counter() - clock
     start = kitchen.arm_configuration()
@@ -96,18 +104,17 @@ def refine_action(
     seconds = {"skills_s": skills_s, "motion_s": solution.seconds, **solution.timings}
     if solution.path is None:
         rejection = f"no {backend.name} path to the targets of sample 1: {solution.status}"
-        record = StepRecord(
-            index,
-            action.text,
-            backend.name,
-            False,
-            1,
-            targets.samples_tried,
-            solution.attempts,
-            motion,
-            0,
-            (rejection,),
-            seconds,
+        record = ActionSampleRecord(
+            index=index,
+            action=action.text,
+            planner=backend.name,
+            solved=False,
+            skill_samples=targets.samples_tried,
+            motion_attempts=solution.attempts,
+            motion=motion,
+            waypoints=0,
+            rejections=(rejection,),
+            seconds=seconds,
         )
         return None, record
     move = Segment(
@@ -118,17 +125,16 @@ def refine_action(
     )
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
     targets.apply(kitchen)
-    record = StepRecord(
-        index,
-        action.text,
-        backend.name,
-        True,
-        1,
-        targets.samples_tried,
-        solution.attempts,
-        motion,
-        trajectory.waypoint_count,
-        (),
-        seconds,
+    record = ActionSampleRecord(
+        index=index,
+        action=action.text,
+        planner=backend.name,
+        solved=True,
+        skill_samples=targets.samples_tried,
+        motion_attempts=solution.attempts,
+        motion=motion,
+        waypoints=trajectory.waypoint_count,
+        rejections=(),
+        seconds=seconds,
     )
     return trajectory, record

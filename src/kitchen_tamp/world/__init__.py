@@ -3,8 +3,8 @@
 A ``Scene`` owns one physics client and its bodies (looked up by name); a
 ``Robot`` gives an arm's configuration, gripper and forward kinematics;
 ``InverseKinematics`` solves for tool poses with seeded restarts; a
-``CollisionChecker`` answers batch validity queries for motion planners;
-``render`` takes headless pictures.
+``PyBulletCollisionChecker`` answers batch validity queries for motion planners;
+``render`` takes headless pictures; ``visual_shapes`` says what a body looks like.
 """
 
 from kitchen_tamp.world.attachment import Attachment
@@ -13,7 +13,7 @@ from kitchen_tamp.world.camera import CameraView, Image, render, tile, write_png
 from kitchen_tamp.world.collision import (
     AllowedContact,
     BoolArray,
-    CollisionChecker,
+    PyBulletCollisionChecker,
     make_collision_checker,
 )
 from kitchen_tamp.world.errors import SceneClosedError, UnknownNameError, WorldError
@@ -28,6 +28,7 @@ from kitchen_tamp.world.scene_description import (
     describe_scene,
 )
 from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike, rotation_about_axis
+from kitchen_tamp.world.visual_shapes import VisualKind, VisualShape, visual_shapes
 
 __all__ = [
     "BASE_LINK",
@@ -41,13 +42,13 @@ __all__ = [
     "BoolArray",
     "BoxShape",
     "CameraView",
-    "CollisionChecker",
     "FloatArray",
     "IkOptions",
     "Image",
     "InverseKinematics",
     "JointInfo",
     "Pose",
+    "PyBulletCollisionChecker",
     "Robot",
     "Scene",
     "SceneClosedError",
@@ -55,6 +56,8 @@ __all__ = [
     "SceneState",
     "UnknownNameError",
     "VectorLike",
+    "VisualKind",
+    "VisualShape",
     "WorldError",
     "describe_collision_checker",
     "describe_scene",
@@ -64,6 +67,7 @@ __all__ = [
     "rotation_about_axis",
     "straight_line",
     "tile",
+    "visual_shapes",
     "write_png",
 ]
 

@@ -1,4 +1,4 @@
-"""Which link pairs a ``CollisionChecker`` measures, and in which order: the pair table and
+"""Which link pairs a ``PyBulletCollisionChecker`` measures, and in which order: the pair table and
 its axis-aligned-bounds broadphase.
 
 Checked: every moving robot link against every other body's links, less the

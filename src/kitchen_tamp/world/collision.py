@@ -1,6 +1,6 @@
 """Collision checking of arm configurations against a frozen snapshot of the scene.
 
-A ``CollisionChecker`` is the only thing a motion planner needs from the world:
+A ``PyBulletCollisionChecker`` is the only thing a motion planner needs from the world:
 ``is_valid`` over a batch of configurations, ``segment_valid`` between two of
 them, the joint limits, and ``min_clearance`` for verification. It captures the
 scene when it is made (what the arm carries, where the drawer is), so it stays
@@ -25,6 +25,7 @@ import numpy as np
 import pybullet as p
 from numpy.typing import NDArray
 
+from kitchen_tamp.joint_spacing import interior_fractions
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body
 from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedPairs
@@ -93,7 +94,7 @@ Along = tuple[Body, Sequence[str], FloatArray]
 """A body whose named joints take the i-th row of the values at the i-th configuration."""
 
 
-class CollisionChecker:
+class PyBulletCollisionChecker:
     """Batch collision checks of arm configurations in a snapshot of a scene."""
 
     def __init__(
@@ -253,7 +254,8 @@ class CollisionChecker:
         return not bool(self.is_valid(np.asarray(q, dtype=float)[None, :])[0])
 
     def segment_valid(self, q0: FloatArray, q1: FloatArray, resolution_rad: float = 0.01) -> bool:
-        """Whether the straight joint-space segment is valid at ``resolution_rad`` spacing.
+        """Whether the straight joint-space segment is valid at the states
+        ``kitchen_tamp.joint_spacing`` puts ``resolution_rad`` apart.
 
         The endpoints are checked first, then the interior coarse-to-fine, so a
         blocked segment usually fails after a few checks.
@@ -261,10 +263,9 @@ class CollisionChecker:
         start, end = np.asarray(q0, dtype=float), np.asarray(q1, dtype=float)
         if not bool(np.all(self.is_valid(np.stack([start, end])))):
             return False
-        steps = int(np.ceil(float(np.max(np.abs(end - start))) / resolution_rad))
-        if steps <= 1:
+        fractions = interior_fractions(start, end, resolution_rad)
+        if len(fractions) == 0:
             return True
-        fractions = np.array(_coarse_to_fine(steps), dtype=float) / steps
         interior = start + fractions[:, None] * (end - start)
         return bool(np.all(self._check_rows(interior, stop_at_invalid=True)))
 
@@ -299,27 +300,8 @@ class CollisionChecker:
         return sorted(set(names))
 
 
-def _coarse_to_fine(steps: int) -> list[int]:
-    """Interior indices 1..steps-1 ordered by bisection (midpoint first)."""
-    order: list[int] = []
-    seen = {0, steps}
-    intervals = [(0, steps)]
-    while intervals:
-        next_intervals = []
-        for lo, hi in intervals:
-            if hi - lo < 2:
-                continue
-            mid = (lo + hi) // 2
-            if mid not in seen:
-                seen.add(mid)
-                order.append(mid)
-            next_intervals += [(lo, mid), (mid, hi)]
-        intervals = next_intervals
-    return order
-
-
 def make_collision_checker(
     scene: Scene, robot: Robot, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
-) -> CollisionChecker:
+) -> PyBulletCollisionChecker:
     """The factory motion planners are given: a checker of the scene as it is now."""
-    return CollisionChecker(scene, robot, allowed, margin)
+    return PyBulletCollisionChecker(scene, robot, allowed, margin)

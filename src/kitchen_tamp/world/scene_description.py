@@ -4,7 +4,7 @@
 its base is and where its movable joints are; which bodies ride on which links
 and how; the robot's arm joints, limits and gripper links; and the contacts a
 collision check allows. ``describe_collision_checker`` does the same for the
-scene as a ``CollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
+scene as a ``PyBulletCollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
 (``a_from_b`` maps b-coordinates to a), frames are URDF link frames.
 
 Each body's URDF is the file the ``Scene`` loaded it from, unless the caller
@@ -21,7 +21,7 @@ from types import MappingProxyType
 import numpy as np
 
 from kitchen_tamp.world.attachment import Attachment
-from kitchen_tamp.world.collision import AllowedContact, CollisionChecker
+from kitchen_tamp.world.collision import AllowedContact, PyBulletCollisionChecker
 from kitchen_tamp.world.errors import UnknownNameError
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
@@ -61,7 +61,7 @@ class AttachmentDescription:
 class SceneDescription:
     """Everything a collision model needs to rebuild a scene snapshot and check the arm in it.
 
-    Checked, as by ``CollisionChecker``: the robot's links moved by the arm
+    Checked, as by ``PyBulletCollisionChecker``: the robot's links moved by the arm
     against every other body (except ``allowed_contacts``); bodies attached to
     the robot against every other body and the robot's links outside
     ``gripper_links``; robot links with at least two movable joints between them.
@@ -142,7 +142,7 @@ def describe_scene(
 
 
 def describe_collision_checker(
-    checker: CollisionChecker, urdf_paths: Mapping[str, Path | str] | None = None
+    checker: PyBulletCollisionChecker, urdf_paths: Mapping[str, Path | str] | None = None
 ) -> SceneDescription:
     """The scene as ``checker`` captured it, with its allowed contacts (the scene is left as it is)."""
     with checker.captured_scene() as attachments:
