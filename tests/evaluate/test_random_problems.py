@@ -53,6 +53,15 @@ def test_same_seed_same_files_other_seed_other_files(tmp_path: Path) -> None:
     assert (tmp_path / "a" / "domain.pddl").read_text() == DOMAIN.read_text()
 
 
+def test_problems_of_another_seed_are_not_written_over(tmp_path: Path) -> None:
+    generate_problems(2, 4, tmp_path, DOMAIN)
+    before = _texts(tmp_path)
+    generate_problems(2, 4, tmp_path, DOMAIN)  # the same seed again (--resume): same files, no error
+    with pytest.raises(RandomProblemError, match=r"random-000\.pddl exists with other content"):
+        generate_problems(2, 5, tmp_path, DOMAIN)
+    assert _texts(tmp_path) == before
+
+
 def test_objects_come_from_the_kitchen_map(tmp_path: Path) -> None:
     only_spam = KitchenMap(boxes=MappingProxyType({"spam": KITCHEN_MAP.boxes["spam"]}))
     assert kitchen_objects(DOMAIN, only_spam).boxes == ("spam",)

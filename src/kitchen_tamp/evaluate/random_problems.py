@@ -175,7 +175,13 @@ def generate_problems(
         text = problem_text(
             f"kitchen-{name}-seed{problem_seed}", domain_name, objects, list(where), init, goal, comment
         )
-        path = write_atomically(folder / f"{name}.pddl", text)
+        path = folder / f"{name}.pddl"
+        if path.exists() and path.read_text(encoding="utf-8") != text:
+            raise RandomProblemError(
+                f"{path} exists with other content (another --problem-seed?): rows of this folder "
+                "may refer to it, so it is not replaced; choose another --out"
+            )
+        write_atomically(path, text)
         result = plan(load_task(path, local_domain), SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
         length = len(result.plan) if result.plan is not None else None
         problems.append(RandomProblem(name, path, attempts, result.solved, length))
