@@ -25,6 +25,7 @@ from kitchen_tamp.execute import (
     SavedRun,
     TrajectoryFileError,
     build_timeline,
+    judge_under_physics,
     plot_joints,
     read_trajectory,
     render_replay,
@@ -78,6 +79,7 @@ def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
     parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
+    parser.add_argument("--no-physics", action="store_true", help="skip execution under physics")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -204,6 +206,8 @@ def verify_and_render(
     if not verification.verified:
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
     report.timing["verification_s"] = time.perf_counter() - clock
+    if not args.no_physics:
+        judge_under_physics(task, trajectory, report)
     clock = time.perf_counter()
     timeline = build_timeline(trajectory)
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
@@ -230,10 +234,11 @@ def _finish(report: RunReport, out_dir: Path, report_name: str = REPORT_FILE) ->
         goals = ", ".join(verification.get("goal_atoms", {}))  # type: ignore[arg-type]
         clearance = float(verification.get("min_clearance_m", 0.0))  # type: ignore[arg-type]
         _say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free "
-             f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; report {path}")
+             f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; {report.verdicts()}; "
+             f"report {path}")
         return int(ExitCode.SOLVED)
     failure = report.failure or {}
-    _say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; report {path}")
+    _say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; {report.verdicts()}; report {path}")
     return int(ExitCode.NO_PLAN)
 
 
