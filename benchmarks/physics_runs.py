@@ -61,6 +61,37 @@ def cause(report: dict[str, object]) -> str:
     return f"exit {report.get('exit')}"
 
 
+def summarize(rows: dict[tuple[str, str], list[tuple[int, dict[str, object]]]]) -> list[str]:
+    """Print the table; return every failure with its cause."""
+    failures: list[str] = []
+    print("| mode | problem | seeds | refined | kinematic verified | physics verified | median physics s "
+          "| median run s | physics share |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for (mode, problem), runs in rows.items():
+        reports = [report for _, report in runs]
+        for seed, report in runs:
+            if verdict(report.get("physics")) is not True:
+                failures.append(f"{mode} {problem} seed {seed}: {cause(report)}")
+        refined = [r for r in reports if r.get("verification") is not None]
+        kinematic = [r for r in refined if verdict(r.get("verification"))]
+        physical = [r for r in refined if verdict(r.get("physics"))]
+        timed = [r["timing"] for r in refined if isinstance(r.get("timing"), dict)]
+        physics_s = [float(t["physics_s"]) for t in timed if "physics_s" in t]  # type: ignore[index]
+        total_s = [float(t["total_s"]) for t in timed if "total_s" in t]  # type: ignore[index]
+        shares = [p / t for p, t in zip(physics_s, total_s, strict=False) if t > 0.0]
+        seeds = sorted(seed for seed, _ in runs)
+        span = f"{seeds[0]}..{seeds[-1]}" if seeds else "-"
+        print(f"| {mode} | {problem} | {span} | {len(refined)}/{len(reports)} "
+              f"| {len(kinematic)}/{len(refined)} "
+              f"| {len(physical)}/{len(refined)} | {_median(physics_s)} | {_median(total_s)} "
+              f"| {_median(shares)} |", flush=True)
+    return failures
+
+
+def _median(values: list[float]) -> str:
+    return f"{statistics.median(values):.2f}" if values else "-"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -68,40 +99,34 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--mode", action="append", choices=MODES, help="mode(s) (default: both)")
     parser.add_argument("--problem", action="append", help="problem(s) (default: the three kitchen problems)")
     parser.add_argument("--seeds", type=int, default=20, help="seeds 0..N-1 (default 20)")
-    parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--out", type=Path, required=True, help="folder that keeps every run")
-    parser.add_argument("--replay", action="store_true", help="judge the runs kept in --out again")
+    what = parser.add_mutually_exclusive_group()
+    what.add_argument("--replay", action="store_true", help="judge the runs kept in --out again")
+    what.add_argument("--resume", action="store_true", help="keep the reports of runs already in --out")
+    what.add_argument("--summarize", action="store_true", help="only tabulate the reports kept in --out")
     args = parser.parse_args(argv)
-    failures: list[str] = []
-    print("| mode | problem | refined | kinematic verified | physics verified | median physics s "
-          "| median run s | physics share |")
-    print("|---|---|---|---|---|---|---|---|")
-    for mode in args.mode or MODES:
-        for problem in args.problem or PROBLEMS:
-            reports = []
-            for seed in range(args.first_seed, args.first_seed + args.seeds):
+    rows: dict[tuple[str, str], list[tuple[int, dict[str, object]]]] = {}
+    modes = args.mode or MODES
+    problems = args.problem or PROBLEMS
+    for mode in modes:
+        for problem in problems:
+            rows[(mode, problem)] = []
+    for seed in range(args.seeds):
+        for mode in modes:
+            for problem in problems:
                 run_dir = args.out / f"{Path(problem).stem}-{mode}-seed{seed}"
-                report = judge(mode, problem, seed, run_dir, args.replay)
-                reports.append(report)
-                if verdict(report.get("physics")) is not True:
-                    failures.append(f"{mode} {problem} seed {seed}: {cause(report)}")
-                    print(f"  {failures[-1]}", file=sys.stderr, flush=True)
-            refined = [r for r in reports if r.get("verification") is not None]
-            kinematic = [r for r in refined if verdict(r.get("verification"))]
-            physical = [r for r in refined if verdict(r.get("physics"))]
-            timed = [r["timing"] for r in refined if isinstance(r.get("timing"), dict)]
-            physics_s = [float(t["physics_s"]) for t in timed if "physics_s" in t]  # type: ignore[index]
-            total_s = [float(t["total_s"]) for t in timed if "total_s" in t]  # type: ignore[index]
-            shares = [
-                float(t["physics_s"]) / float(t["total_s"])  # type: ignore[index]
-                for t in timed
-                if "physics_s" in t and float(t.get("total_s", 0.0)) > 0.0  # type: ignore[union-attr]
-            ]
-            def median(values: list[float]) -> str:
-                return f"{statistics.median(values):.2f}" if values else "-"
-            print(f"| {mode} | {problem} | {len(refined)}/{len(reports)} | {len(kinematic)}/{len(refined)} | "
-                  f"{len(physical)}/{len(refined)} | {median(physics_s)} | {median(total_s)} | "
-                  f"{median(shares)} |", flush=True)
+                kept = run_dir / ("replay_report.json" if args.replay else "report.json")
+                if args.summarize or (args.resume and kept.exists()):
+                    if not kept.exists():
+                        continue
+                    report: dict[str, object] = json.loads(kept.read_text())
+                else:
+                    report = judge(mode, problem, seed, run_dir, args.replay)
+                    line = f"{mode} {problem} seed {seed}: exit {report.get('exit')}"
+                    print(line + ("" if verdict(report.get("physics")) else f", {cause(report)}"),
+                          file=sys.stderr, flush=True)
+                rows[(mode, problem)].append((seed, report))
+    failures = summarize(rows)
     print("\nfailures:" if failures else "\nno failures")
     for line in failures:
         print(f"- {line}")
