@@ -123,7 +123,6 @@ class PhysicsExecution:
                 "grip_force_n": self.settings.grip_force,
                 "grip_squeeze_m": self.settings.grip_squeeze,
                 "passive_joint_friction": self.settings.passive_joint_friction,
-                "finger_friction": self.settings.finger_material.lateral,
                 "box_friction": self.settings.box_material.lateral,
                 "speed_fraction": self.time_law.speed_fraction,
             },

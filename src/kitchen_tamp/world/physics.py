@@ -44,10 +44,8 @@ class PhysicsSettings:
     time_step: float = 1.0 / 240.0
     gravity: float = 9.81
     solver_iterations: int = 50
-    finger_material: ContactMaterial = ContactMaterial(lateral=1.0, spinning=0.02)
-    """The Panda URDF's finger friction (1.0) with torsional friction, which resists a box
-    turning about the closing axis only if both bodies in contact have some."""
     box_material: ContactMaterial = ContactMaterial(lateral=0.8, spinning=0.02)
+    """Boxes. The fingers keep the Panda URDF's friction (1.0, torsional 0.1)."""
     fixture_material: ContactMaterial = ContactMaterial(lateral=0.6, spinning=0.01)
     """Surfaces, drawer and handle."""
     grip_force: float = 20.0
@@ -56,6 +54,18 @@ class PhysicsSettings:
     grip_squeeze: float = 0.01
     """How much narrower (m) than the planned width the fingers are commanded to close, so
     that they press with ``grip_force`` instead of resting on the object."""
+    finger_coupling_force: float = 50.0
+    """Force bound (N) of the gear that makes the fingers move together (0: no gear)."""
+    finger_contact_stiffness: float = 1e6
+    finger_contact_damping: float = 5e3
+    """The fingers' contact stiffness (N/m) and damping (N s/m). The Panda URDF's compliant
+    3e4 N/m and 1e3 N s/m let a held box creep round the closing axis, about a degree per
+    second under its own weight (6 degrees over one carry, 3 cm at the far end of the
+    baguette); this stiffness holds it within half a degree."""
+    contact_breaking_threshold: float = 0.001
+    """Distance (m) at which PyBullet forgets a contact point. Its default, 2 cm, keeps stale
+    points between the finger meshes and a box whose normals point the wrong way once the
+    fingers open: the box then sticks to a finger (releases fail, or a box is dragged away)."""
     passive_joint_friction: float = 5.0
     """Dry friction (N or N m) of joints nothing drives, e.g. a drawer's slide: without it
     a drawer creeps shut when a box is put in it."""
@@ -98,6 +108,7 @@ class PhysicsWorld:
             fixedTimeStep=settings.time_step,
             numSolverIterations=settings.solver_iterations,
             deterministicOverlappingPairs=1,
+            contactBreakingThreshold=settings.contact_breaking_threshold,
             physicsClientId=self.client,
         )
         arm = robot.body
@@ -108,13 +119,21 @@ class PhysicsWorld:
         self.arm_efforts: FloatArray = np.array([effort for effort, _ in limits])
         self.arm_velocity_limits: FloatArray = np.array([velocity for _, velocity in limits])
         self.finger_velocity_limit = min(self._joint_limits(arm, i)[1] for i in self._finger_indices)
-        finger_links = {arm.link_index(link) for link in robot.finger_links}
-        self._set_material(arm, finger_links, settings.finger_material)
         for body in fixtures:
             self._set_material(body, body.link_indices, settings.fixture_material)
             self._make_passive(body)
         for body in loose:
             self._set_material(body, body.link_indices, settings.box_material)
+        if settings.finger_coupling_force > 0.0:
+            self._couple_fingers()
+        for link in robot.finger_links:
+            p.changeDynamics(
+                arm.uid,
+                arm.link_index(link),
+                contactStiffness=settings.finger_contact_stiffness,
+                contactDamping=settings.finger_contact_damping,
+                physicsClientId=self.client,
+            )
         self.command_arm(robot.configuration())
         self.command_gripper(robot.gripper_width())
 
@@ -132,6 +151,22 @@ class PhysicsWorld:
                 lateralFriction=material.lateral,
                 spinningFriction=material.spinning,
                 rollingFriction=material.rolling,
+                physicsClientId=self.client,
+            )
+
+    def _couple_fingers(self) -> None:
+        """Gear the fingers to open and close together, as the gripper's mechanism does: with two
+        independent finger motors both pressing at their force bound, the fingers and the box
+        between them slide freely along the closing axis whenever the hand accelerates."""
+        uid = self.robot.body.uid
+        first = self._finger_indices[0]
+        for other in self._finger_indices[1:]:
+            gear = p.createConstraint(
+                uid, first, uid, other, p.JOINT_GEAR, [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0],
+                physicsClientId=self.client,
+            )
+            p.changeConstraint(
+                gear, gearRatio=-1.0, erp=0.1, maxForce=self.settings.finger_coupling_force,
                 physicsClientId=self.client,
             )
 
