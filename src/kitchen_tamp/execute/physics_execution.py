@@ -22,6 +22,7 @@ import numpy as np
 from kitchen_tamp.execute.physics_plan import PlannedOutcome, planned_outcomes
 from kitchen_tamp.execute.physics_time_law import DEFAULT_TIME_LAW, TimeLaw, strokes
 from kitchen_tamp.execute.run_report import RunReport
+from kitchen_tamp.execute.verification import parse_action
 from kitchen_tamp.kitchen import KitchenScene, abstract_state, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, Task, atom_text
@@ -331,7 +332,7 @@ def execute_under_physics(
         state = task.initial_state
         for index, (step, planned) in enumerate(zip(trajectory.steps, outcomes, strict=True)):
             figures = rollout.run_action(index, step, planned)
-            action = task.action_named(*_name_and_args(step.action))
+            action = parse_action(task, step.action)
             if action is not None and action.applicable(state):
                 state = action.apply(state)
             world.command_arm(step.end)
@@ -348,11 +349,6 @@ def execute_under_physics(
             result.final_box_errors = result.actions[-1].box_errors
         result.simulated_s = world.time
     return result
-
-
-def _name_and_args(text: str) -> tuple[str, list[str]]:
-    words = text.strip().removeprefix("(").removesuffix(")").split()
-    return (words[0] if words else ""), words[1:]
 
 
 def judge_under_physics(

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kitchen_tamp.execute.verification import parse_action
 from kitchen_tamp.kitchen import KitchenScene
 from kitchen_tamp.kitchen.open_drawer import pull_direction
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
@@ -73,8 +74,8 @@ def planned_outcomes(
     outcomes = []
     state = task.initial_state
     for step in trajectory.steps:
-        words = step.action.strip().removeprefix("(").removesuffix(")").split()
-        arguments = words[1:]
+        action = parse_action(task, step.action)
+        arguments = action.args if action is not None else ()
         boxes = [a for a in arguments if a in kitchen.boxes]
         drawers = [a for a in arguments if a in kitchen.map.openables]
         events = grip_events([s.gripper_widths for s in step.segments])
@@ -105,7 +106,6 @@ def planned_outcomes(
         if held is not None:
             last = step.segments[-1].configurations[-1]
             poses[held] = robot.forward_kinematics(last, hand) @ hand_from_box
-        action = task.action_named(words[0], arguments) if words else None
         if action is not None and action.applicable(state):
             state = action.apply(state)
         outcomes.append(PlannedOutcome(dict(poses), held, dict(openings), events))
