@@ -268,7 +268,7 @@ class _Rollout:
         return figures
 
     # -- comparing with the plan -------------------------------------------------------------------
-    def observed_atoms(self, objects: dict[str, str]) -> tuple[frozenset[Atom], str | None]:
+    def observed_atoms(self) -> frozenset[Atom]:
         """Ψ(scene) with the box both fingers touch counted as held."""
         robot = self.kitchen.robot
         held = next((n for n, b in self.kitchen.boxes.items() if self.world.holds(b)), None)
@@ -276,14 +276,14 @@ class _Rollout:
         if held is not None:
             scene.attach(self.kitchen.box(held), robot.body, self.hand)
         try:
-            return abstract_state(self.kitchen, objects), held
+            return abstract_state(self.kitchen, self.objects)
         finally:
             if held is not None:
                 scene.detach(self.kitchen.box(held))
 
     def compare(self, figures: ActionFigures, planned: PlannedOutcome, expected: frozenset[Atom]) -> None:
         label = f"after {figures.action}"
-        observed, _ = self.observed_atoms(self.objects)
+        observed = self.observed_atoms()
         figures.as_planned = observed == expected
         if not figures.as_planned:
             self.result.problems.append(
@@ -339,7 +339,7 @@ def execute_under_physics(
             rollout.settle()
             rollout.compare(figures, planned, task.state_atoms(state))
             result.actions.append(figures)
-        final, _ = rollout.observed_atoms(rollout.objects)
+        final = rollout.observed_atoms()
         result.final_atoms = _atoms_text(final)
         result.goal_atoms = {atom_text(a): a in final for a in sorted(task.goal_atoms)}
         result.goal_atoms.update(
