@@ -11,11 +11,13 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.cli.final_project import main
-from kitchen_tamp.execute import SavedRun, execute_under_physics, write_trajectory
+from kitchen_tamp.execute import PhysicsExecution, SavedRun, execute_under_physics, write_trajectory
+from kitchen_tamp.execute.physics_execution import FrameCallback
 from kitchen_tamp.kitchen import KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Task, load_task
 from kitchen_tamp.refinement import SamplingMotionBackend, refine_with_sesame
+from kitchen_tamp.refinement.kitchen_sesame import sesame_replanner
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -102,3 +104,42 @@ def test_on_frame_sees_the_simulated_clock(kitchen_task: Task, refined: KitchenT
     short = KitchenTrajectory(refined.steps[:1])
     execute_under_physics(kitchen_task, short, on_frame=lambda t, kitchen: times.append(t))
     assert len(times) > 10 and np.all(np.diff(times) > 0.0)
+
+
+def _push_off_after(
+    result: PhysicsExecution, kitchen_task: Task, action_prefix: str, box: str, push: float
+) -> FrameCallback:
+    """An ``on_frame`` that slides ``box`` by ``push`` metres towards the middle of the drawer
+    while the scene settles after the first action starting with ``action_prefix``."""
+    index = next(i for i, a in enumerate(result.actions) if a.action.startswith(action_prefix))
+    when = result.actions[index].end_s - 0.09
+    done: list[bool] = []
+
+    def nudge(time_s: float, kitchen: KitchenScene) -> None:
+        if done or time_s < when:
+            return
+        done.append(True)
+        body = kitchen.box(box)
+        pose = body.base_pose()
+        toward = kitchen.openable_region("drawer").world_from_region.translation - pose.translation
+        toward[2] = 0.0
+        body.reset_base_pose(pose.translated(push * toward / np.linalg.norm(toward)))
+
+    return nudge
+
+
+def test_a_box_pushed_off_its_place_gets_the_rest_of_the_plan_refined_again(
+    kitchen_task: Task, refined: KitchenTrajectory
+) -> None:
+    nominal = execute_under_physics(kitchen_task, refined)
+    nudge = _push_off_after(nominal, kitchen_task, "(placeIn", "spam", 0.04)
+    open_loop = execute_under_physics(kitchen_task, refined, on_frame=nudge)
+    assert not open_loop.verified
+    assert any("spam" in p and "planned pose" in p for p in open_loop.problems), open_loop.problems
+    nudge = _push_off_after(nominal, kitchen_task, "(placeIn", "spam", 0.04)
+    replan = sesame_replanner(SamplingMotionBackend(), seed=0)
+    closed_loop = execute_under_physics(kitchen_task, refined, on_frame=nudge, replan=replan)
+    assert len(closed_loop.replans) == 1 and "spam" in str(closed_loop.replans[0]["reason"])
+    place = next(i for i, a in enumerate(refined.plan) if a.startswith("(placeIn"))
+    assert closed_loop.replans[0]["plan"] == refined.plan[place + 1 :]
+    assert closed_loop.verified, closed_loop.problems

@@ -33,6 +33,7 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
+from kitchen_tamp.execute.physics_replanning import Replanner
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
@@ -44,6 +45,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
     SesameBudgets,
     SesameRefinement,
     refine_with_sesame,
+    sesame_replanner,
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
@@ -148,6 +150,13 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
+def _physics_replanner(run: SavedRun) -> Replanner:
+    """SeSamE with the run's motion back end (its defaults), for re-plans under physics."""
+    if run.mode == "optimizes":
+        return sesame_replanner(OptimizingMotionBackend(DEFAULT_SETTINGS), run.seed)
+    return sesame_replanner(SamplingMotionBackend(), run.seed)
+
+
 def _progress(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
     """One line per sample: which plan and step, and what the sample gave."""
     where = f"plan {(event.plan_index or 0) + 1}, step {(event.step_index or 0) + 1}"
@@ -213,7 +222,7 @@ def verify_and_render(
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
     report.timing["verification_s"] = time.perf_counter() - clock
     if not args.no_physics:
-        judge_under_physics(task, trajectory, report)
+        judge_under_physics(task, trajectory, report, replan=_physics_replanner(run))
     clock = time.perf_counter()
     timeline = build_timeline(trajectory)
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from kitchen_tamp.execute.physics_plan import PlannedOutcome, planned_outcomes
+from kitchen_tamp.execute.physics_replanning import Replanner, replan_rest
 from kitchen_tamp.execute.physics_time_law import DEFAULT_TIME_LAW, TimeLaw, strokes
 from kitchen_tamp.execute.run_report import RunReport
 from kitchen_tamp.execute.verification import parse_action
@@ -62,6 +63,8 @@ class ActionFigures:
     as_planned: bool = True
     box_errors: dict[str, dict[str, float]] = field(default_factory=dict)
     drawer_errors_m: dict[str, float] = field(default_factory=dict)
+    end_s: float = 0.0
+    """Simulated time when the scene was compared with the plan after the action."""
 
     def data(self) -> dict[str, object]:
         return {
@@ -73,6 +76,7 @@ class ActionFigures:
             "as_planned": self.as_planned,
             "box_errors": self.box_errors,
             "drawer_errors_m": {k: round(v, 5) for k, v in self.drawer_errors_m.items()},
+            "end_s": round(self.end_s, 4),
         }
 
 
@@ -88,6 +92,7 @@ class PhysicsExecution:
     final_atoms: list[str] = field(default_factory=list)
     final_box_errors: dict[str, dict[str, float]] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
+    replans: list[dict[str, object]] = field(default_factory=list)
     simulated_s: float = 0.0
 
     @property
@@ -112,6 +117,7 @@ class PhysicsExecution:
             "final_box_errors": self.final_box_errors,
             "actions": [a.data() for a in self.actions],
             "problems": list(self.problems),
+            "replans": list(self.replans),
             "simulated_s": round(self.simulated_s, 3),
             "tolerances": {
                 "position_m": self.tolerances.position_m,
@@ -281,8 +287,14 @@ class _Rollout:
             if held is not None:
                 scene.detach(self.kitchen.box(held))
 
-    def compare(self, figures: ActionFigures, planned: PlannedOutcome, expected: frozenset[Atom]) -> None:
+    def compare(
+        self, figures: ActionFigures, planned: PlannedOutcome, expected: frozenset[Atom]
+    ) -> list[str]:
+        """Record how the scene differs from the plan; Ψ mismatches are problems, and boxes or
+        drawers beyond tolerance are returned (the drift a re-plan may absorb)."""
         label = f"after {figures.action}"
+        figures.end_s = self.world.time
+        drift: list[str] = []
         observed = self.observed_atoms()
         figures.as_planned = observed == expected
         if not figures.as_planned:
@@ -297,18 +309,19 @@ class _Rollout:
             errors = pose_errors(pose, self.kitchen.box(box).base_pose())
             figures.box_errors[box] = errors
             if errors["tilt_deg"] > tolerances.tilt_deg:
-                self.result.problems.append(f"{label}: {box} leans {errors['tilt_deg']:.0f} deg")
+                drift.append(f"{label}: {box} leans {errors['tilt_deg']:.0f} deg")
             if errors["position_error_m"] > tolerances.position_m:
-                self.result.problems.append(
+                drift.append(
                     f"{label}: {box} is {errors['position_error_m'] * 100:.1f} cm from its planned pose"
                 )
         for drawer, value in planned.openings.items():
             figures.drawer_errors_m[drawer] = abs(self.kitchen.opening(drawer) - value)
             if figures.drawer_errors_m[drawer] > tolerances.position_m:
-                self.result.problems.append(
+                drift.append(
                     f"{label}: {drawer} is open {self.kitchen.opening(drawer) * 100:.1f} cm, "
                     f"planned {value * 100:.1f} cm"
                 )
+        return drift
 
 
 def execute_under_physics(
@@ -319,10 +332,17 @@ def execute_under_physics(
     tolerances: PhysicsTolerances = DEFAULT_TOLERANCES,
     on_frame: FrameCallback | None = None,
     frame_interval_s: float = 1.0 / 30.0,
+    replan: Replanner | None = None,
+    max_replans: int = 2,
 ) -> PhysicsExecution:
-    """Run ``trajectory`` in a fresh simulated kitchen for ``task`` and judge it."""
+    """Run ``trajectory`` in a fresh simulated kitchen for ``task`` and judge it.
+
+    With ``replan``, a scene that has drifted beyond tolerance after an action (Ψ still as
+    planned, hand empty) gets the rest of the plan refined again from where things are,
+    up to ``max_replans`` times; each re-plan is reported."""
     result = PhysicsExecution(settings, time_law, tolerances)
     with build_kitchen_for_task(task) as kitchen:
+        steps = list(trajectory.steps)
         outcomes = planned_outcomes(kitchen, task, trajectory)
         world = PhysicsWorld(
             kitchen.scene, kitchen.robot, [kitchen.kitchen], list(kitchen.boxes.values()), settings
@@ -330,34 +350,57 @@ def execute_under_physics(
         rollout = _Rollout(kitchen, world, result, dict(task.objects), on_frame, frame_interval_s)
         rollout.settle()
         state = task.initial_state
-        for index, (step, planned) in enumerate(zip(trajectory.steps, outcomes, strict=True)):
+        index = 0
+        while index < len(steps):
+            step, planned = steps[index], outcomes[index]
             figures = rollout.run_action(index, step, planned)
             action = parse_action(task, step.action)
             if action is not None and action.applicable(state):
                 state = action.apply(state)
             world.command_arm(step.end)
             rollout.settle()
-            rollout.compare(figures, planned, task.state_atoms(state))
+            drift = rollout.compare(figures, planned, task.state_atoms(state))
             result.actions.append(figures)
+            index += 1
+            can_replan = replan is not None and len(result.replans) < max_replans and index < len(steps)
+            if drift and can_replan and figures.as_planned and figures.held_box is None:
+                assert replan is not None
+                again = replan_rest(task, state, kitchen, replan)
+                result.replans.append(
+                    {
+                        "after": step.action,
+                        "reason": "; ".join(drift),
+                        "plan": None if again is None else again.trajectory.plan,
+                    }
+                )
+                if again is not None:
+                    steps[index:] = again.trajectory.steps
+                    outcomes[index:] = again.outcomes
+                    continue
+            result.problems.extend(drift)
         final = rollout.observed_atoms()
         result.final_atoms = _atoms_text(final)
         result.goal_atoms = {atom_text(a): a in final for a in sorted(task.goal_atoms)}
         result.goal_atoms.update(
             {f"(not {atom_text(a)})": a not in final for a in sorted(task.negative_goal_atoms)}
         )
-        if outcomes:
+        if result.actions:
             result.final_box_errors = result.actions[-1].box_errors
         result.simulated_s = world.time
     return result
 
 
 def judge_under_physics(
-    task: Task, trajectory: KitchenTrajectory, report: RunReport, on_frame: FrameCallback | None = None
+    task: Task,
+    trajectory: KitchenTrajectory,
+    report: RunReport,
+    on_frame: FrameCallback | None = None,
+    replan: Replanner | None = None,
 ) -> PhysicsExecution:
     """Execute ``trajectory`` under physics and record the verdict in ``report``: its
     ``physics`` section, ``timing.physics_s`` and, if physics failed, the run's failure."""
     clock = time.perf_counter()
-    execution = execute_under_physics(task, trajectory, on_frame=on_frame)
+    execution = execute_under_physics(task, trajectory, on_frame=on_frame, replan=replan)
     report.timing["physics_s"] = time.perf_counter() - clock
     report.physics = execution.report_data()
     if not execution.verified:

@@ -60,6 +60,9 @@ class RunReport:
             physics = "skipped" if self.verification is not None else "not run"
         else:
             physics = "verified" if self.physics["verified"] else "FAILED"
+            replans = self.physics.get("replans") or []
+            if isinstance(replans, list) and replans:
+                physics += f" after {len(replans)} re-plan{'s' if len(replans) > 1 else ''}"
             errors = self.physics.get("final_box_errors") or {}
             if isinstance(errors, dict) and errors:
                 position = max(float(e["position_error_m"]) for e in errors.values())
