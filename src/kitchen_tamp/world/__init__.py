@@ -4,8 +4,9 @@ A ``Scene`` owns one physics client and its bodies (looked up by name); a
 ``Robot`` gives an arm's configuration, gripper and forward kinematics;
 ``InverseKinematics`` solves for tool poses with seeded restarts; a
 ``PyBulletCollisionChecker`` answers batch validity queries for motion planners;
-``render`` takes headless pictures; ``physics.PhysicsWorld`` steps a scene with gravity,
-joint motors and friction for execution under physics.
+``render`` takes headless pictures; ``visual_shapes`` says what a body looks like;
+``physics.PhysicsWorld`` steps a scene with gravity, joint motors and friction for
+execution under physics.
 """
 
 from kitchen_tamp.world.attachment import Attachment
@@ -29,6 +30,7 @@ from kitchen_tamp.world.scene_description import (
     describe_scene,
 )
 from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike, rotation_about_axis
+from kitchen_tamp.world.visual_shapes import VisualKind, VisualShape, visual_shapes
 
 __all__ = [
     "BASE_LINK",
@@ -56,6 +58,8 @@ __all__ = [
     "SceneState",
     "UnknownNameError",
     "VectorLike",
+    "VisualKind",
+    "VisualShape",
     "WorldError",
     "describe_collision_checker",
     "describe_scene",
@@ -65,6 +69,7 @@ __all__ = [
     "rotation_about_axis",
     "straight_line",
     "tile",
+    "visual_shapes",
     "write_png",
 ]
 
