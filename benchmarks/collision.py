@@ -153,9 +153,8 @@ def sphere_agreement(kitchen: KitchenScene, samples: int, seed: int) -> None:
                     scenes[f"carrying {box}"] = kitchen.collision_checker()
                     break
     print(f"sphere model vs PyBullet, {samples} uniform + {samples} near-obstacle configurations per scene")
-    print(
-        f"{'scene':<18}{'sample':<9}{'pyb free':>9}{'missed':>8}{'false pos':>10}{'spheres/s':>12}{'pybullet/s':>12}"
-    )
+    header = f"{'scene':<18}{'sample':<9}{'pyb free':>9}{'missed':>8}{'false pos':>10}"
+    print(header + f"{'spheres/s':>12}{'pybullet/s':>12}")
     for name, checker in scenes.items():
         spheres = SphereCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
         spheres.is_valid(np.zeros((1, 7)))
