@@ -163,7 +163,9 @@ def joint_space_obstacle_queries(count: int, seed: int) -> list[MotionQuery]:
 KITCHEN_PROBLEMS = tuple(
     Path(__file__).resolve().parents[1] / "pddl" / f for f in ("problem.pddl", "problem_hard.pddl")
 )
-CHECKER_BACKENDS = ("pybullet", "drake", "spheres")
+CHECKER_BACKENDS = ("pybullet", "drake", "spheres", "spheres-only")
+"""spheres: the sphere model with Drake deciding what it rejects (as ``--collision-model spheres``
+plans); spheres-only: the sphere model alone (conservative, so it rejects near-contact starts)."""
 
 
 def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[MotionQuery]:
@@ -172,6 +174,7 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
     from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
     from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
     from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+    from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
     from kitchen_tamp.planning.search.registry import plan
     from kitchen_tamp.world import panda_urdf_path
     from kitchen_tamp.world.scene_description import describe_collision_checker
@@ -193,8 +196,11 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
         checker: CollisionChecker = targets.free_space_checker
         if backend == "drake":
             checker = DrakeCollisionChecker(describe_collision_checker(targets.free_space_checker, paths))
-        if backend == "spheres":
-            checker = SphereCollisionChecker(describe_collision_checker(targets.free_space_checker, paths))
+        if backend.startswith("spheres"):
+            description = describe_collision_checker(targets.free_space_checker, paths)
+            checker = spheres = SphereCollisionChecker(description)
+            if backend == "spheres":
+                checker = SphereScreenedChecker(spheres, DrakeCollisionChecker(description))
         name = f"{problem.stem}-s{'.'.join(map(str, seed))}-{step}{targets.action_text}"
         queries.append(
             MotionQuery(
@@ -413,16 +419,17 @@ BATCH_SIZE = 4096
 
 
 def format_batch_throughput(queries: Sequence[MotionQuery], seed: int) -> str:
-    """Configurations per CPU second of our checker and the judge's, in batches of BATCH_SIZE uniform
-    samples of each query's scene (the first query of each distinct checker, up to four)."""
+    """Configurations per CPU second of our checker (the sphere model alone when it screens for
+    another) and the judge's, in batches of BATCH_SIZE uniform samples of the first four queries' scenes."""
     rng = np.random.default_rng(seed)
     ours_checked = judge_checked = 0
     ours_s = judge_s = 0.0
     for query in queries[:4]:
         qs = query.space.sample_uniform(rng, BATCH_SIZE)
-        query.checker.is_valid(qs[:2])  # compile or warm up outside the clock
+        checker = getattr(query.checker, "spheres", query.checker)
+        checker.is_valid(qs[:2])  # compile or warm up outside the clock
         cpu = time.process_time()
-        query.checker.is_valid(qs)
+        checker.is_valid(qs)
         ours_s += time.process_time() - cpu
         ours_checked += len(qs)
         if query.judge is not None:

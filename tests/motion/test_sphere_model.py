@@ -18,8 +18,8 @@ from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 from kitchen_tamp.motion.sphere_covering import covering_slack, sample_polytope
 from kitchen_tamp.motion.sphere_scene import _covered_shape, shape_polytope
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.motion.sphere_urdf import read_urdf
-from kitchen_tamp.refinement.planning_checkers import SphereScreenedChecker
 from kitchen_tamp.world import PyBulletCollisionChecker, panda_urdf_path
 from kitchen_tamp.world.scene_description import describe_collision_checker
 from tests.kitchen.conftest import REPO
@@ -173,6 +173,6 @@ def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) ->
 def test_screened_checker_gives_drakes_verdicts(free: CheckerPair, kitchen: KitchenScene) -> None:
     description = describe_collision_checker(free.pybullet)
     drake = DrakeCollisionChecker(description)
-    screened = SphereScreenedChecker(free.spheres, drake, 0.01)
+    screened = SphereScreenedChecker(free.spheres, drake)
     qs = np.random.default_rng(5).uniform(drake.lower, drake.upper, size=(200, 7))
     assert screened.is_valid(qs).tolist() == drake.is_valid(qs).tolist()

@@ -70,6 +70,8 @@ class SphereCollisionChecker:
             radii.append(
                 float(np.max(np.linalg.norm(local - center, axis=1) + model.sphere_radii[group.spheres]))
             )
+        boxes_center = model.boxes.centers
+        boxes_reach = np.einsum("bij,bj->bi", np.abs(model.boxes.rotations), model.boxes.half_extents)
         return (
             self.lower,
             self.upper,
@@ -91,9 +93,19 @@ class SphereCollisionChecker:
             np.ascontiguousarray(model.boxes.rotations),
             np.ascontiguousarray(model.boxes.centers),
             np.ascontiguousarray(model.boxes.half_extents),
-            model.group_box_pairs.astype(np.int64),
+            boxes_center - boxes_reach,
+            boxes_center + boxes_reach,
+            self._likely_first(model.group_box_pairs).astype(np.int64),
             model.group_pairs.astype(np.int64),
         )
+
+    def _likely_first(self, group_box_pairs: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
+        """(group, box) pairs ordered so that a collision tends to be met early: the hand's end of
+        the arm and carried bodies first (they sweep the most), then the largest boxes."""
+        volume = np.prod(self.model.boxes.half_extents, axis=1)
+        links = np.array([g.robot_link for g in self.model.groups])
+        order = np.lexsort((-volume[group_box_pairs[:, 1]], -links[group_box_pairs[:, 0]]))
+        return group_box_pairs[order]
 
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""

@@ -93,6 +93,17 @@ def _box_gap(point: FloatArray, rotation: FloatArray, center: FloatArray, half: 
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
+def _aabb_gap(point: FloatArray, low: FloatArray, high: FloatArray) -> float:
+    """Distance from a point to an axis-aligned box (zero inside): a lower bound of the gap to any
+    shape inside the box."""
+    total = 0.0
+    for k in range(3):
+        excess = max(low[k] - point[k], point[k] - high[k], 0.0)
+        total += excess * excess
+    return float(np.sqrt(total))
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
 def _distance(a: FloatArray, b: FloatArray) -> float:
     dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
     return float(np.sqrt(dx * dx + dy * dy + dz * dz))
@@ -127,6 +138,8 @@ def valid_configurations(
     box_rotations: FloatArray,
     box_centers: FloatArray,
     box_halves: FloatArray,
+    box_lows: FloatArray,
+    box_highs: FloatArray,
     group_box_pairs: npt.NDArray[np.int64],
     group_pairs: npt.NDArray[np.int64],
     margin: float,
@@ -151,6 +164,8 @@ def valid_configurations(
             _world_point(poses[group_links[g]], group_centers[g], group_world[g])
         for k in range(group_box_pairs.shape[0]):
             g, b = group_box_pairs[k, 0], group_box_pairs[k, 1]
+            if _aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= margin:
+                continue
             if (
                 _box_gap(group_world[g], box_rotations[b], box_centers[b], box_halves[b]) - group_radii[g]
                 >= margin
@@ -179,6 +194,8 @@ def valid_configurations(
                 if not placed[s]:
                     _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
                     placed[s] = True
+                if _distance(world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
+                    continue
                 for t in range(group_starts[h], group_stops[h]):
                     if not placed[t]:
                         _world_point(poses[sphere_links[t]], sphere_centers[t], world[t])

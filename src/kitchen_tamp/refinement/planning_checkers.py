@@ -6,22 +6,19 @@ stays the simulator and the verifier whichever is chosen: every planned path is
 re-checked with the skill's own PyBullet checker before it is accepted.
 
 ``spheres`` is the conservative sphere model (`kitchen_tamp.motion.sphere_checker`)
-in front of Drake's: what the spheres find free is free (they cover the
-links), what they reject Drake decides, so verdicts are Drake's and most
-configurations never reach Drake.
+in front of Drake's (`kitchen_tamp.motion.sphere_screening`): what the spheres
+find free is free (they cover the links), what they reject Drake decides, so
+verdicts are Drake's and most configurations never reach Drake.
 """
 
 from __future__ import annotations
 
 from types import MappingProxyType
 
-import numpy as np
-
 from kitchen_tamp.kitchen import KitchenScene, SkillTargets
-from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations, ValidityMask
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -36,30 +33,6 @@ COLLISION_MODELS = MappingProxyType(
 DEFAULT_COLLISION_MODEL = "drake"
 
 
-class SphereScreenedChecker:
-    """Spheres first; the configurations they reject are checked again by an exact model."""
-
-    def __init__(
-        self, spheres: SphereCollisionChecker, exact: BoundedCollisionChecker, resolution: float
-    ) -> None:
-        self.spheres = spheres
-        self.exact = exact
-        self.lower: JointConfiguration = spheres.lower
-        self.upper: JointConfiguration = spheres.upper
-        self._segments = CountingSegmentChecker(self, resolution)
-
-    def is_valid(self, qs: JointConfigurations) -> ValidityMask:
-        batch = np.atleast_2d(np.asarray(qs, dtype=float))
-        valid = self.spheres.is_valid(batch)
-        rejected = np.flatnonzero(~valid)
-        if len(rejected):
-            valid[rejected] = self.exact.is_valid(batch[rejected])
-        return valid
-
-    def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
-        return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
-
-
 def planning_checker(
     kitchen: KitchenScene, targets: SkillTargets, margin: float, model: str = DEFAULT_COLLISION_MODEL
 ) -> BoundedCollisionChecker:
@@ -70,7 +43,7 @@ def planning_checker(
         if model == "drake":
             return drake
         spheres = SphereCollisionChecker(description, margin=margin)
-        return SphereScreenedChecker(spheres, drake, spheres.segment_resolution)
+        return SphereScreenedChecker(spheres, drake)
     if model == "pybullet":
         with kitchen.scene.preserved():
             kitchen.robot.set_gripper_width(targets.gripper_width)
