@@ -16,7 +16,13 @@ from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targ
 from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_covering import covering_slack, sample_polytope
+from kitchen_tamp.motion.sphere_covering import (
+    box_polytope,
+    cover_with_spheres,
+    covering_slack,
+    overshoot,
+    sample_polytope,
+)
 from kitchen_tamp.motion.sphere_scene import _covered_shape, shape_polytope
 from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.motion.sphere_urdf import read_urdf
@@ -72,6 +78,20 @@ def test_spheres_cover_every_panda_collision_hull() -> None:
         points = sample_polytope(polytope, 1500, rng)
         slack = covering_slack(_covered_shape(model.path, index, 0.012), points)
         assert slack >= -1e-9, (shape.link, slack)
+
+
+def test_generated_spheres_cover_and_stay_close() -> None:
+    """Fresh from the generator (not the disk cache): a finger mesh and a box are covered, and no
+    sphere reaches more than a few centimetres outside."""
+    model = read_urdf(panda_urdf_path())
+    finger = next(shape for shape in model.collisions if shape.link == "panda_leftfinger")
+    rng = np.random.default_rng(1)
+    for polytope in (shape_polytope(finger), box_polytope(np.array([0.1, 0.05, 0.085]))):
+        spheres = cover_with_spheres(polytope, 0.012)
+        assert covering_slack(spheres, sample_polytope(polytope, 1500, rng)) >= -1e-9
+        planes = polytope.planes()
+        reaches = [overshoot(c, r, planes) for c, r in zip(spheres.centers, spheres.radii, strict=True)]
+        assert max(reaches) < 0.03
 
 
 def test_batch_kinematics_is_pybullets(kitchen: KitchenScene, free: CheckerPair) -> None:

@@ -21,11 +21,16 @@ non-gripper links; robot links with at least two moving joints between them.
 from __future__ import annotations
 
 import functools
+import hashlib
+import json
+import os
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.motion.drake_collision import DescribedScene
 from kitchen_tamp.motion.sphere_covering import (
     DEFAULT_COVERING_TOLERANCE,
@@ -41,6 +46,8 @@ from kitchen_tamp.motion.sphere_urdf import UrdfCollision, read_urdf
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
 
+COVERING_VERSION = "1"
+"""Bump when `sphere_covering` changes how spheres are made: cached sphere sets are keyed by it."""
 PYBULLET_MESH_MARGIN = 0.001
 """PyBullet pads every convex mesh by about this much (m); robot spheres are padded by it so that
 what PyBullet calls touching the model calls touching too."""
@@ -61,13 +68,47 @@ def shape_polytope(shape: UrdfCollision) -> ConvexPolytope:
     return local.transformed(shape.origin)
 
 
+def sphere_cache_directory() -> Path:
+    """Where generated sphere sets are kept between runs: ``KITCHEN_TAMP_CACHE_DIR`` or
+    ``~/.cache/kitchen_tamp``, under ``spheres/``."""
+    root = os.environ.get("KITCHEN_TAMP_CACHE_DIR") or Path.home() / ".cache" / "kitchen_tamp"
+    return Path(root) / "spheres"
+
+
+def _cache_key(shape: UrdfCollision, tolerance: float) -> str:
+    digest = hashlib.sha256()
+    digest.update(COVERING_VERSION.encode())
+    digest.update(np.asarray([tolerance, *shape.size.tolist()], dtype=float).tobytes())
+    digest.update(np.asarray(shape.origin, dtype=float).tobytes())
+    digest.update(shape.kind.encode())
+    if shape.kind == "mesh":
+        digest.update(Path(shape.mesh_path).read_bytes())
+    return digest.hexdigest()[:32]
+
+
 @functools.lru_cache(maxsize=256)
 def _covered_shape(urdf_path: str, index: int, tolerance: float) -> SphereSet:
-    """Spheres covering one collision shape of a URDF, in its link's frame (cached per process)."""
+    """Spheres covering one collision shape of a URDF, in its link's frame (kept in memory and
+    on disk: a mesh is covered once per machine, not once per run)."""
     shape = read_urdf(urdf_path).collisions[index]
     if shape.kind == "sphere":
         return SphereSet(shape.origin[:3, 3][None], shape.size[:1].copy())
-    return cover_with_spheres(shape_polytope(shape), tolerance)
+    cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance)}.json"
+    try:
+        stored = json.loads(cached.read_text())
+        return SphereSet(
+            np.array(stored["centers"], dtype=float).reshape(-1, 3), np.array(stored["radii"], dtype=float)
+        )
+    except (OSError, ValueError, KeyError):
+        pass
+    covered = cover_with_spheres(shape_polytope(shape), tolerance)
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        text = json.dumps({"centers": covered.centers.tolist(), "radii": covered.radii.tolist()})
+        write_atomically(cached, text)
+    except OSError:
+        pass  # an unwritable cache only costs time
+    return covered
 
 
 @dataclass(frozen=True, eq=False)
