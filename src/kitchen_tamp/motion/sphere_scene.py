@@ -34,6 +34,7 @@ from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.motion.drake_collision import DescribedScene
 from kitchen_tamp.motion.sphere_covering import (
     DEFAULT_COVERING_TOLERANCE,
+    DEFAULT_MAX_SPHERES,
     ConvexPolytope,
     SphereSet,
     box_polytope,
@@ -46,7 +47,7 @@ from kitchen_tamp.motion.sphere_urdf import UrdfCollision, read_urdf
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
 
-COVERING_VERSION = "1"
+COVERING_VERSION = "2"
 """Bump when `sphere_covering` changes how spheres are made: cached sphere sets are keyed by it."""
 PYBULLET_MESH_MARGIN = 0.001
 """PyBullet pads every convex mesh by about this much (m); robot spheres are padded by it so that
@@ -78,7 +79,7 @@ def sphere_cache_directory() -> Path:
 def _cache_key(shape: UrdfCollision, tolerance: float) -> str:
     digest = hashlib.sha256()
     digest.update(COVERING_VERSION.encode())
-    digest.update(np.asarray([tolerance, *shape.size.tolist()], dtype=float).tobytes())
+    digest.update(np.asarray([tolerance, DEFAULT_MAX_SPHERES, *shape.size.tolist()], dtype=float).tobytes())
     digest.update(np.asarray(shape.origin, dtype=float).tobytes())
     digest.update(shape.kind.encode())
     if shape.kind == "mesh":
