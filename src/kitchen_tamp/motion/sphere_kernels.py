@@ -8,8 +8,8 @@ of compiling again. Arrays only; `sphere_checker` prepares them from a
 
 Layout: links in parent-before-child order with ``parents`` (-1 for the root),
 ``origins`` (L, 4, 4) joint origins, ``kinds`` (0 fixed or held, 1 revolute, 2
-prismatic variable), ``axes`` (L, 3) unit joint axes, ``variables`` (L) column
-of the configuration (or -1) and ``held`` (L, 4, 4) the motion of held joints.
+prismatic variable), ``axes`` (L, 3) unit joint axes and ``variables`` (L) column
+of the configuration (or -1); a held joint's motion is folded into its origin.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ FloatArray = npt.NDArray[np.float64]
 FIXED, REVOLUTE, PRISMATIC = 0, 1, 2
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, inline="always")
 def _compose(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
     """out = a @ b for rigid 4x4 transforms (numba's @ needs BLAS from scipy)."""
     for i in range(3):
@@ -34,7 +34,7 @@ def _compose(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
     out[3, 3] = 1.0
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, inline="always")
 def _link_poses(
     q: FloatArray,
     root: FloatArray,
@@ -43,20 +43,19 @@ def _link_poses(
     kinds: npt.NDArray[np.int64],
     axes: FloatArray,
     variables: npt.NDArray[np.int64],
-    held: FloatArray,
     poses: FloatArray,
+    motion: FloatArray,
+    frame: FloatArray,
 ) -> None:
-    motion = np.empty((4, 4))
-    frame = np.empty((4, 4))
     for link in range(parents.shape[0]):
         if parents[link] < 0:
             poses[link] = root
             continue
-        _compose(poses[parents[link]], origins[link], frame)
         kind = kinds[link]
         if kind == FIXED:
-            _compose(frame, held[link], poses[link])
+            _compose(poses[parents[link]], origins[link], poses[link])
             continue
+        _compose(poses[parents[link]], origins[link], frame)
         angle = q[variables[link]]
         x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
         motion[:] = 0.0
@@ -109,7 +108,7 @@ def _distance(a: FloatArray, b: FloatArray) -> float:
     return float(np.sqrt(dx * dx + dy * dy + dz * dz))
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, inline="always")
 def _world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
     for k in range(3):
         out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
@@ -126,7 +125,6 @@ def valid_configurations(
     kinds: npt.NDArray[np.int64],
     axes: FloatArray,
     variables: npt.NDArray[np.int64],
-    held: FloatArray,
     sphere_links: npt.NDArray[np.int64],
     sphere_centers: FloatArray,
     sphere_radii: FloatArray,
@@ -148,6 +146,7 @@ def valid_configurations(
     count = qs.shape[0]
     valid = np.ones(count, dtype=np.bool_)
     poses = np.empty((parents.shape[0], 4, 4))
+    motion, frame = np.empty((4, 4)), np.empty((4, 4))
     world = np.empty((sphere_radii.shape[0], 3))
     placed = np.zeros(sphere_radii.shape[0], dtype=np.bool_)
     group_world = np.empty((group_radii.shape[0], 3))
@@ -158,7 +157,7 @@ def valid_configurations(
                 valid[m] = False
         if not valid[m]:
             continue
-        _link_poses(qs[m], root, parents, origins, kinds, axes, variables, held, poses)
+        _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
         placed[:] = False
         for g in range(group_radii.shape[0]):
             _world_point(poses[group_links[g]], group_centers[g], group_world[g])
