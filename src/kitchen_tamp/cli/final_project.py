@@ -133,8 +133,8 @@ def _check_display(args: argparse.Namespace) -> None:
 
 def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
-        if args.collision_model != "drake":
-            raise UsageError("optimizes needs signed distances: use --collision-model drake (the default)")
+        if args.collision_model == "pybullet":
+            raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
         settings = replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints)
         return OptimizingMotionBackend(settings)
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])

@@ -9,6 +9,8 @@ exact model's; most configurations never reach it.
 
 from __future__ import annotations
 
+from typing import Protocol
+
 import numpy as np
 
 from kitchen_tamp.motion.collision_checker import (
@@ -21,10 +23,17 @@ from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 
 
-class SphereScreenedChecker:
-    """``spheres`` first; the configurations they reject are checked again by ``exact``."""
+class ExactModel(CollisionChecker, Protocol):
+    """An exact collision model that also measures signed distance (Drake's)."""
 
-    def __init__(self, spheres: SphereCollisionChecker, exact: CollisionChecker) -> None:
+    def signed_distance(self, q: JointConfiguration) -> tuple[float, JointConfiguration]: ...
+
+
+class SphereScreenedChecker:
+    """``spheres`` first; the configurations they reject are checked again by ``exact``, which
+    also answers distance queries (so trajectory optimisation sees the exact model)."""
+
+    def __init__(self, spheres: SphereCollisionChecker, exact: ExactModel) -> None:
         self.spheres = spheres
         self.exact = exact
         self.lower: JointConfiguration = spheres.lower
@@ -44,3 +53,7 @@ class SphereScreenedChecker:
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
+
+    def signed_distance(self, q: JointConfiguration) -> tuple[float, JointConfiguration]:
+        """The exact model's minimum signed distance and its gradient."""
+        return self.exact.signed_distance(q)

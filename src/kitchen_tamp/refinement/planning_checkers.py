@@ -24,13 +24,13 @@ from kitchen_tamp.world.scene_description import describe_collision_checker
 
 COLLISION_MODELS = MappingProxyType(
     {
-        "spheres": "the sphere model's batched checks; Drake decides what the spheres reject",
+        "spheres": "the sphere model's batched checks; Drake decides what they reject and measures distances",
         "drake": "Drake SceneGraph distance queries on the same URDFs (about 2x faster per check)",
         "pybullet": "PyBullet closest-point queries, as the verifier uses",
     }
 )
 """Name -> description of the collision models planning can use."""
-DEFAULT_COLLISION_MODEL = "drake"
+DEFAULT_COLLISION_MODEL = "spheres"
 
 
 def planning_checker(
