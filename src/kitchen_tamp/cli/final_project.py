@@ -8,7 +8,6 @@ import argparse
 import os
 import sys
 import time
-import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -16,7 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.bilevel import SampleEvent
-from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli import ExitCode, exit_code_of
+from kitchen_tamp.cli.output_paths import OutputPathError, check_output_folder
 from kitchen_tamp.execute import (
     FRAME_SECONDS,
     REPORT_FILE,
@@ -32,8 +32,10 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
+from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, write_timeline_replay
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
@@ -45,6 +47,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
+from kitchen_tamp.world import UnknownNameError, WorldError
 
 SYMBOLIC_PLANNER = "bfs"
 """Search that gives the symbolic plan: breadth-first, so the plan is shortest."""
@@ -56,6 +59,10 @@ RRT_VARIANTS = {"connect": "rrt_connect", "basic": "rrt"}
 
 class UsageError(Exception):
     """A command line that cannot run as asked (exit 2)."""
+
+
+BAD_INPUT_ERRORS = (UsageError, OutputPathError, PlanningInputError, KitchenError, TrajectoryFileError)
+"""Errors in what the user gave (options, files, output folder): one line, exit 2."""
 
 
 def _integer_at_least(minimum: int) -> Callable[[str], int]:
@@ -75,7 +82,9 @@ def _integer_at_least(minimum: int) -> Callable[[str], int]:
 
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
-    parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
+    parser.add_argument("--no-video", action="store_true", help="do not render replay.gif and replay.html")
+    parser.add_argument("--meshcat", action="store_true",
+                        help="serve a live 3D viewer (Meshcat) on this machine while the program runs")
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
     parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
 
@@ -135,8 +144,8 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
         if args.collision_model == "pybullet":
             raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
-        settings = replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints)
-        return OptimizingMotionBackend(settings)
+        nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
+        return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
@@ -166,6 +175,12 @@ def _stuck_step(outcome: SesameRefinement) -> tuple[int | None, str | None]:
     return step.index + 1, step.action.text
 
 
+def _start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
+    live = LiveViewer(kitchen)
+    _say(f"live viewer (Meshcat) at {live.url} while this program runs")
+    return live
+
+
 def _wait_for_enter(index: int, action: str) -> None:
     input(f"step {index + 1}: {action}  (press Enter)")
 
@@ -189,12 +204,14 @@ def verify_and_render(
     report: RunReport,
     args: argparse.Namespace,
     report_name: str = REPORT_FILE,
+    live: LiveViewer | None = None,
 ) -> int:
     """Verify ``run`` in a fresh kitchen, plot and render it, write the report; the exit code."""
     clock = time.perf_counter()
     trajectory = run.trajectory
     wait = _wait_for_enter if args.step and not args.gui else None
     with build_kitchen_for_task(task, gui=args.gui) as fresh:
+        live = _start_live_viewer(fresh) if args.meshcat and live is None else live
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
         if args.gui:
@@ -211,9 +228,12 @@ def verify_and_render(
     if show_velocities:
         title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles and velocities"
     report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, show_velocities).name
-    report.outputs["gif"] = None
+    report.outputs["gif"] = report.outputs["html"] = None
     if not args.no_video:
         with build_kitchen_for_task(task) as kitchen:
+            html_clock = time.perf_counter()
+            report.outputs["html"] = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, live).name
+            report.timing["html_s"] = time.perf_counter() - html_clock
             images = render_replay(kitchen, timeline)
         report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
         _say(f"rendered {len(images)} frames of the replay")
@@ -243,11 +263,19 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     backend = _motion_backend(args)
     problem = resolve_problem_path(args.problem).resolve()
     domain = Path(args.domain).resolve() if args.domain else problem.parent / "domain.pddl"
-    task = load_task(problem, domain)
     out_dir: Path = args.out or Path("out") / f"{problem.stem}-{args.mode}-seed{args.seed}"
+    check_output_folder(out_dir, "--out" if args.out else "output folder")
+    task = load_task(problem, domain)
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
     report.started = started
     with build_kitchen_for_task(task) as kitchen:
+        live = _start_live_viewer(kitchen) if args.meshcat else None
+
+        def on_sample(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
+            _progress(event, record)
+            if live is not None:
+                live.update()
+
         report.timing["startup_s"] = time.perf_counter() - started
         clock = time.perf_counter()
         result = plan(task, SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
@@ -261,7 +289,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         clock = time.perf_counter()
         budgets = SesameBudgets(args.max_plans, args.samples_per_step, args.max_samples)
         outcome = refine_with_sesame(
-            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=_progress
+            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=on_sample
         )
         report.timing["refinement_s"] = time.perf_counter() - clock
         report.bilevel = outcome.report_data()
@@ -275,7 +303,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     _record_step_timing(report, refined.records)
     run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)
     report.outputs["trajectory"] = write_trajectory(out_dir / TRAJECTORY_FILE, run).name
-    return verify_and_render(task, run, out_dir, report, args)
+    return verify_and_render(task, run, out_dir, report, args, live=live)
 
 
 def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]) -> None:
@@ -289,9 +317,10 @@ def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]
 def run_replay(args: argparse.Namespace, started: float) -> int:
     """``replay RUN_DIR``: verify and render a saved trajectory again, without planning."""
     _check_display(args)
+    out_dir: Path = args.out or args.run_dir
+    check_output_folder(out_dir, "--out" if args.out else "RUN_DIR")
     run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
     task = load_task(run.problem, run.domain)
-    out_dir: Path = args.out or args.run_dir
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
     report.plan = run.trajectory.plan
     report.started = started
@@ -301,21 +330,23 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     return verify_and_render(task, run, out_dir, report, args, report_name="replay_report.json")
 
 
+def _bad_input_line(error: Exception) -> str | None:
+    """The one line for an error in the user's input or setup (exit 2); ``None`` for a bug."""
+    if isinstance(error, BAD_INPUT_ERRORS):
+        return str(error)
+    if isinstance(error, NoNonlinearSolverError):
+        return f"optimizes needs a nonlinear solver: {error}; use rrt, or a Drake build that has one"
+    if isinstance(error, UnknownNameError):
+        return f"the kitchen's model files do not match its kitchen map: {error}"
+    if isinstance(error, WorldError):
+        return f"the kitchen could not be set up: {error}"
+    return None
+
+
 def main(argv: Sequence[str] | None = None, started: float | None = None) -> int:
     """Run the command line; returns the exit code (see ``ExitCode``)."""
-    started = time.perf_counter() if started is None else started
+    run_started = time.perf_counter() if started is None else started
     args = build_parser().parse_args(argv)
-    try:
-        if args.mode == "replay":
-            return run_replay(args, started)
-        return run_plan(args, started)
-    except (UsageError, PlanningInputError, KitchenError, TrajectoryFileError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return int(ExitCode.BAD_INPUT)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return int(ExitCode.NO_PLAN)
-    except Exception as error:  # a bug: say so, with the traceback, and exit 3
-        traceback.print_exc()
-        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
-        return int(ExitCode.INTERNAL_ERROR)
+    if args.mode == "replay":
+        return exit_code_of(lambda: run_replay(args, run_started), _bad_input_line)
+    return exit_code_of(lambda: run_plan(args, run_started), _bad_input_line)
