@@ -163,6 +163,9 @@ def joint_space_obstacle_queries(count: int, seed: int) -> list[MotionQuery]:
 KITCHEN_PROBLEMS = tuple(
     Path(__file__).resolve().parents[1] / "pddl" / f for f in ("problem.pddl", "problem_hard.pddl")
 )
+JUDGE_AGREEMENT_MARGIN = 0.002
+"""Clearance (m) our Drake and sphere checkers keep so that their paths pass PyBullet's check (which
+pads each mesh by about 1 mm; see `kitchen_tamp.motion.drake_collision`)."""
 CHECKER_BACKENDS = ("pybullet", "drake", "spheres", "spheres-only")
 """spheres: the sphere model with Drake deciding what it rejects (as ``--collision-model spheres``
 plans); spheres-only: the sphere model alone (conservative, so it rejects near-contact starts)."""
@@ -195,12 +198,14 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
             break
         checker: CollisionChecker = targets.free_space_checker
         if backend == "drake":
-            checker = DrakeCollisionChecker(describe_collision_checker(targets.free_space_checker, paths))
+            description = describe_collision_checker(targets.free_space_checker, paths)
+            checker = DrakeCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
         if backend.startswith("spheres"):
             description = describe_collision_checker(targets.free_space_checker, paths)
-            checker = spheres = SphereCollisionChecker(description)
+            checker = spheres = SphereCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
             if backend == "spheres":
-                checker = SphereScreenedChecker(spheres, DrakeCollisionChecker(description))
+                drake = DrakeCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
+                checker = SphereScreenedChecker(spheres, drake)
         name = f"{problem.stem}-s{'.'.join(map(str, seed))}-{step}{targets.action_text}"
         queries.append(
             MotionQuery(
