@@ -17,8 +17,6 @@ from types import MappingProxyType
 
 from kitchen_tamp.kitchen import KitchenScene, SkillTargets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -42,6 +40,10 @@ def planning_checker(
         drake = DrakeCollisionChecker(description, margin=margin)
         if model == "drake":
             return drake
+        # imported here: numba loads only when the sphere model is used
+        from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+        from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+
         spheres = SphereCollisionChecker(description, margin=margin)
         return SphereScreenedChecker(spheres, drake)
     if model == "pybullet":
