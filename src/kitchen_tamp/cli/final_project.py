@@ -146,8 +146,8 @@ def _check_display(args: argparse.Namespace) -> None:
 
 def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
-        if args.collision_model != "drake":
-            raise UsageError("optimizes needs signed distances: use --collision-model drake (the default)")
+        if args.collision_model == "pybullet":
+            raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
         nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
         return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
