@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from collections.abc import Sequence
@@ -12,18 +11,13 @@ from typing import Any
 
 from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
-from kitchen_tamp.planning import (
-    SEARCH_DESCRIPTIONS,
-    SEARCHES,
-    PlanningInputError,
-    SearchResult,
-    Task,
-    load_task,
-    plan,
-    plan_text,
-    validate_plan,
-)
-from kitchen_tamp.planning.pddl_files import PDDL_DIR
+from kitchen_tamp.planning.errors import PlanningInputError
+from kitchen_tamp.planning.pddl_paths import PDDL_DIR
+from kitchen_tamp.planning.search.registry import SEARCH_DESCRIPTIONS, SEARCHES, plan
+from kitchen_tamp.planning.search.result import SearchResult
+from kitchen_tamp.planning.task import Task
+from kitchen_tamp.planning.task_cache import load_task_cached
+from kitchen_tamp.planning.validation import plan_text, validate_plan
 
 DEFAULT_PLANNERS = ("bfs", "ehc")
 
@@ -93,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plan_out is not None:
         check_output_file(args.plan_out, "--plan-out")
     started = time.perf_counter()
-    task = load_task(args.problem, args.domain)
+    task = load_task_cached(args.problem, args.domain)
     ground_seconds = time.perf_counter() - started
     if args.timeout is not None and args.timeout <= 0:
         raise PlanningInputError("--timeout must be a positive number of seconds")
@@ -118,6 +112,8 @@ def run(args: argparse.Namespace) -> int:
 
         write_atomically(args.plan_out, plan_text(last.plan))
     if args.json:
+        import json  # only for --json
+
         print(json.dumps({
             "problem": task.name,
             "domain": task.domain_name,
