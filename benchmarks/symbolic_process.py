@@ -190,8 +190,9 @@ def process_table(rows: list[tuple[str, Path, Path, tuple[str, ...]]], workdir: 
         if ratios[ours]:
             values = [r for _, r in ratios[ours]]
             slower = [row for row, r in ratios[ours] if r < 1.0]
-            print(f"\nwhole process, pyperplan / ours ({label}): geometric mean {geometric_mean(values):.2f}x, "
-                  f"minimum {min(values):.2f}x over {len(values)} rows both solved; "
+            print(f"\nwhole process, pyperplan / ours ({label}): "
+                  f"geometric mean {geometric_mean(values):.2f}x,"
+                  f" minimum {min(values):.2f}x over {len(values)} rows both solved; "
                   f"slower on: {', '.join(slower) if slower else 'none'}")
     for note in notes:
         print(note)

@@ -7,7 +7,6 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
 from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
@@ -18,6 +17,10 @@ from kitchen_tamp.planning.search.result import SearchResult
 from kitchen_tamp.planning.task import Task
 from kitchen_tamp.planning.task_cache import load_task_cached
 from kitchen_tamp.planning.validation import plan_text, validate_plan
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from typing import Any
 
 DEFAULT_PLANNERS = ("bfs", "ehc")
 

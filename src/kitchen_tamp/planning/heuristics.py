@@ -31,13 +31,17 @@ from __future__ import annotations
 
 import heapq
 from collections.abc import Callable
-from typing import Literal
 
 from kitchen_tamp.planning.task import State, Task, bits, mask_of
 
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+
 INFINITY = float("inf")
 
-HeuristicName = Literal["hmax", "hadd", "hff"]
+if TYPE_CHECKING:
+    from typing import Literal
+
+    HeuristicName = Literal["hmax", "hadd", "hff"]
 Heuristic = Callable[[State], float]
 HelpfulHeuristic = Callable[[State], tuple[float, int]]
 """h_FF with helpful actions: (h, bitset over action indices of the helpful actions)."""
