@@ -26,7 +26,6 @@ Pairings (ours / pyperplan / Fast Downward):
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import re
@@ -74,7 +73,7 @@ def _command(planner: str, search: str, domain: Path, problem: Path, workdir: Pa
              timeout: float) -> list[str]:
     if planner in OURS:
         return [sys.executable, str(ENTRY_SCRIPT), str(problem), "--domain", str(domain), "--planner", search,
-                "--json", "--timeout", str(timeout)]
+                "--timeout", str(timeout)]
     if planner == "pyperplan":
         return [sys.executable, "-m", "pyperplan", *PYPERPLAN_ARGS[search], str(domain), str(problem)]
     assert fd_script is not None
@@ -86,10 +85,9 @@ def _command(planner: str, search: str, domain: Path, problem: Path, workdir: Pa
 
 def _plan_length(planner: str, completed: subprocess.CompletedProcess[str]) -> int | None:
     if planner in OURS:
-        if completed.returncode != 0:
-            return None
-        length = json.loads(completed.stdout)["results"][0]["length"]
-        return int(length) if length is not None else None
+        # The plain output a user reads (``--json`` would add importing json to every run).
+        found = re.search(r"^length (\d+),", completed.stdout, re.MULTILINE)
+        return int(found.group(1)) if completed.returncode == 0 and found else None
     text = completed.stdout + completed.stderr
     pattern = r"Plan length: (\d+)" if planner == "pyperplan" else r"Plan length: (\d+) step"
     match = re.search(pattern, text)

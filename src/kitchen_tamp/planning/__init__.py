@@ -14,9 +14,11 @@ served from the task cache never imports Lark or the ``pddl`` package.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
 
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
+    from typing import Any
+
     from kitchen_tamp.planning.errors import PlanningInputError
     from kitchen_tamp.planning.heuristics import RelaxedExploration, make_heuristic
     from kitchen_tamp.planning.loading import load_task

@@ -30,15 +30,15 @@ import os
 import sys
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
 
 import kitchen_tamp
 from kitchen_tamp.planning.pddl_paths import resolve_problem_path
 from kitchen_tamp.planning.task import GroundAction, Task, bits
 
-TYPE_CHECKING = False  # typing's own flag would cost importing typing; type checkers know this name
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
     from hashlib import sha256
+    from typing import Any
 else:
     try:  # the built-in SHA-256: ``hashlib`` would load OpenSSL first, a few ms at every start
         from _sha256 import sha256
