@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import importlib
+
 from kitchen_tamp.planning.search.result import SearchResult
 from kitchen_tamp.planning.task import Task
 
@@ -15,41 +17,29 @@ if TYPE_CHECKING:
         ) -> SearchResult: ...
 
 
-# Each search's module is imported when it first runs: a planner process pays only for the one it uses.
-
-def breadth_first_search(task: Task, *, time_budget: float | None = None,
-                         max_expansions: int | None = None) -> SearchResult:
-    from kitchen_tamp.planning.search import breadth_first
-
-    return breadth_first.breadth_first_search(task, time_budget=time_budget, max_expansions=max_expansions)
+SEARCH_PACKAGE = "kitchen_tamp.planning.search"
 
 
-def enforced_hill_climbing(task: Task, *, time_budget: float | None = None,
-                           max_expansions: int | None = None) -> SearchResult:
-    from kitchen_tamp.planning.search import enforced_hill_climbing as ehc
+def _imported_when_run(module: str, name: str) -> Search:
+    """The search ``name`` of ``kitchen_tamp.planning.search.module``, its module imported at its first run.
 
-    return ehc.enforced_hill_climbing(task, time_budget=time_budget, max_expansions=max_expansions)
+    A planner process then pays only for the searches it uses (``bfs`` never
+    loads the heuristics).
+    """
+    def search(task: Task, *, time_budget: float | None = None,
+               max_expansions: int | None = None) -> SearchResult:
+        function: Search = getattr(importlib.import_module(f"{SEARCH_PACKAGE}.{module}"), name)
+        return function(task, time_budget=time_budget, max_expansions=max_expansions)
 
-
-def greedy_best_first_search(task: Task, *, time_budget: float | None = None,
-                             max_expansions: int | None = None) -> SearchResult:
-    from kitchen_tamp.planning.search import best_first
-
-    return best_first.greedy_best_first_search(task, time_budget=time_budget, max_expansions=max_expansions)
-
-
-def astar_search(task: Task, *, time_budget: float | None = None,
-                 max_expansions: int | None = None) -> SearchResult:
-    from kitchen_tamp.planning.search import best_first
-
-    return best_first.astar_search(task, time_budget=time_budget, max_expansions=max_expansions)
+    search.__name__ = search.__qualname__ = name
+    return search
 
 
 SEARCHES: dict[str, Search] = {
-    "bfs": breadth_first_search,
-    "ehc": enforced_hill_climbing,
-    "gbfs": greedy_best_first_search,
-    "astar": astar_search,
+    "bfs": _imported_when_run("breadth_first", "breadth_first_search"),
+    "ehc": _imported_when_run("enforced_hill_climbing", "enforced_hill_climbing"),
+    "gbfs": _imported_when_run("best_first", "greedy_best_first_search"),
+    "astar": _imported_when_run("best_first", "astar_search"),
 }
 """Name -> search with its default settings. ``bfs`` and ``astar`` (with h_max) return shortest plans."""
 
