@@ -36,8 +36,6 @@ bench: install
 	$(BIN)/python benchmarks/collision.py
 	$(BIN)/python benchmarks/trajopt.py
 	$(BIN)/python benchmarks/bilevel.py
-	$(BIN)/python benchmarks/kitchen_runs.py --mode rrt
-	$(BIN)/python benchmarks/kitchen_runs.py --mode optimizes
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache
