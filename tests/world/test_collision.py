@@ -102,7 +102,9 @@ def test_self_collision_is_detected(panda_scene: tuple[Scene, Robot]) -> None:
     """Fold the hand back onto the base: found by sampling, checked against a checker with
     every other body allowed, so only self-collision can make it invalid."""
     scene, robot = panda_scene
-    allow_world = [AllowedContact(b.name, max_penetration=float("inf")) for b in scene.bodies if b is not robot.body]
+    unbounded = float("inf")
+    others = [b for b in scene.bodies if b is not robot.body]
+    allow_world = [AllowedContact(b.name, max_penetration=unbounded) for b in others]
     checker = make_collision_checker(scene, robot, allow_world)
     rng = np.random.default_rng(0)
     samples = rng.uniform(robot.lower, robot.upper, size=(400, robot.dof))

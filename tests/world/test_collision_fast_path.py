@@ -21,10 +21,8 @@ from kitchen_tamp.world import (
     SceneState,
     make_collision_checker,
 )
-from kitchen_tamp.world.checked_pairs import CONTACT_PENETRATION_BOUND
 
 CONFIGURATIONS = 250
-BOUND = CONTACT_PENETRATION_BOUND
 
 
 def _ancestry(body: Body, link: int) -> list[tuple[int, bool]]:
@@ -47,8 +45,8 @@ def _carried_allowance(allowed: Sequence[AllowedContact], carried: str, body: st
 
 def _reference_distances(
     scene: Scene, robot: Robot, allowed: Sequence[AllowedContact], horizon: float
-) -> list[float]:
-    """Every checked pair's distance plus its allowance at the current state, one whole-body
+) -> list[tuple[float, float]]:
+    """(distance, allowance) of every checked pair at the current state, one whole-body
     query at a time."""
     body, client = robot.body, robot.body.client
     carried = [a for a in scene.attachments if a.parent is body]
@@ -60,23 +58,25 @@ def _reference_distances(
         for pt in p.getClosestPoints(body.uid, obstacle.uid, horizon, physicsClientId=client):
             names = (body.link_name(pt[3]), obstacle.name, obstacle.link_name(pt[4]))
             if pt[3] in moving:
-                distances.append(pt[8] + _allowance(allowed, *names))
+                distances.append((pt[8], _allowance(allowed, *names)))
     for attachment in carried:
         child = attachment.child
         for other in obstacles:
             distances += [
-                pt[8] + _carried_allowance(allowed, child.name, other.name, other.link_name(pt[4]))
+                (pt[8], _carried_allowance(allowed, child.name, other.name, other.link_name(pt[4])))
                 for pt in p.getClosestPoints(child.uid, other.uid, horizon, physicsClientId=client)
             ]
         for pt in p.getClosestPoints(child.uid, body.uid, horizon, physicsClientId=client):
-            distances.append(pt[8] + _allowance(allowed, body.link_name(pt[4]), child.name, child.link_name(pt[3])))
+            names = (body.link_name(pt[4]), child.name, child.link_name(pt[3]))
+            distances.append((pt[8], _allowance(allowed, *names)))
     shaped = [i for i in body.link_indices if p.getCollisionShapeData(body.uid, i, physicsClientId=client)]
     for a, b in itertools.combinations(shaped, 2):
         chain_a, chain_b = _ancestry(body, a), _ancestry(body, b)
         shared = {lnk for lnk, _ in chain_a} & {lnk for lnk, _ in chain_b}
         if sum(m for lnk, m in chain_a + chain_b if lnk not in shared) >= 2:
             distances += [
-                pt[8] for pt in p.getClosestPoints(body.uid, body.uid, horizon, a, b, physicsClientId=client)
+                (pt[8], 0.0)
+                for pt in p.getClosestPoints(body.uid, body.uid, horizon, a, b, physicsClientId=client)
             ]
     return distances
 
@@ -87,11 +87,10 @@ def _reference(
     """(valid, min clearance capped at 0.5) at ``q``, the scene put back afterwards."""
     with scene.preserved():
         robot.set_configuration(q)
-        valid = robot.within_limits(q) and all(
-            d >= margin for d in _reference_distances(scene, robot, allowed, max(margin, 0.0) + BOUND)
-        )
-        clearance = min(_reference_distances(scene, robot, allowed, 0.5), default=0.5)
-        clearance = min(clearance, 0.5)
+        near = _reference_distances(scene, robot, allowed, max(margin, 0.0))
+        valid = robot.within_limits(q) and all(d >= (-a if a > 0.0 else margin) for d, a in near)
+        measured = _reference_distances(scene, robot, allowed, 0.5)
+        clearance = min([d + a for d, a in measured if a == 0.0 or d + a < 0.0], default=0.5)
     return valid, clearance
 
 

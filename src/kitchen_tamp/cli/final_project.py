@@ -23,6 +23,7 @@ from kitchen_tamp.execute import (
     TRAJECTORY_FILE,
     RunReport,
     SavedRun,
+    Timeline,
     TrajectoryFileError,
     build_timeline,
     plot_joints,
@@ -33,7 +34,6 @@ from kitchen_tamp.execute import (
     write_trajectory,
 )
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
-from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
@@ -170,9 +170,8 @@ def _wait_for_enter(index: int, action: str) -> None:
     input(f"step {index + 1}: {action}  (press Enter)")
 
 
-def _play_in_window(kitchen: KitchenScene, trajectory: KitchenTrajectory, step: bool) -> None:
+def _play_in_window(kitchen: KitchenScene, timeline: Timeline, step: bool) -> None:
     """Play the run at nominal speed in the GUI scene (waiting for Enter per action if asked)."""
-    timeline = build_timeline(trajectory)
     times = np.arange(0.0, timeline.duration, 1.0 / 30.0)
     current = -1
     for _, index in timeline.play(kitchen, times):
@@ -197,15 +196,15 @@ def verify_and_render(
     with build_kitchen_for_task(task, gui=args.gui) as fresh:
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
+        timeline = build_timeline(trajectory, verification.tracks)
         if args.gui:
             fresh.scene.restore_state(initial)
-            _play_in_window(fresh, trajectory, args.step)
+            _play_in_window(fresh, timeline, args.step)
     report.verification = verification.report_data()
     if not verification.verified:
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
     report.timing["verification_s"] = time.perf_counter() - clock
     clock = time.perf_counter()
-    timeline = build_timeline(trajectory)
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
     show_velocities = run.mode == "optimizes"
     if show_velocities:
@@ -290,6 +289,9 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     """``replay RUN_DIR``: verify and render a saved trajectory again, without planning."""
     _check_display(args)
     run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
+    if run.ignored_fields:
+        _say(f"note: not reading {', '.join(run.ignored_fields)} from the trajectory file: the judge "
+             "derives them from the kitchen")
     task = load_task(run.problem, run.domain)
     out_dir: Path = args.out or args.run_dir
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)

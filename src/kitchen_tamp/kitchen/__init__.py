@@ -6,6 +6,8 @@ targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
 """
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
+from kitchen_tamp.kitchen.action_replay import ActionReplay, SegmentTrack, first_problem, replay_action
+from kitchen_tamp.kitchen.contact_policy import CONTACT_PENETRATION_BOUND, check_initial_overlaps
 from kitchen_tamp.kitchen.errors import (
     InitialStateMismatchError,
     KitchenError,
@@ -21,14 +23,17 @@ from kitchen_tamp.kitchen.layout import build_kitchen, build_kitchen_for_task, l
 from kitchen_tamp.kitchen.parameters import DEFAULT_PARAMETERS, SkillParameters
 from kitchen_tamp.kitchen.placements import Placement
 from kitchen_tamp.kitchen.regions import SupportRegion
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.skills import SKILLS, sample_action_targets, sample_targets
-from kitchen_tamp.kitchen.targets import Segment, SkillTargets, enter_segment, set_waypoint
+from kitchen_tamp.kitchen.targets import SkillTargets
 
 __all__ = [
+    "CONTACT_PENETRATION_BOUND",
     "DEFAULT_PARAMETERS",
     "KITCHEN_MAP",
     "RESTING_GAP",
     "SKILLS",
+    "ActionReplay",
     "Grasp",
     "InitialStateMismatchError",
     "KitchenError",
@@ -36,6 +41,7 @@ __all__ = [
     "KitchenScene",
     "Placement",
     "Segment",
+    "SegmentTrack",
     "SkillFailure",
     "SkillParameters",
     "SkillTargets",
@@ -46,10 +52,11 @@ __all__ = [
     "abstract_state",
     "build_kitchen",
     "build_kitchen_for_task",
+    "check_initial_overlaps",
     "check_initial_state",
-    "enter_segment",
+    "first_problem",
     "load_kitchen_problem",
+    "replay_action",
     "sample_action_targets",
     "sample_targets",
-    "set_waypoint",
 ]

@@ -12,7 +12,7 @@ Collision filters leave exactly the pairs the description lists
 (``checked_pairs``: the pair policy that ``kitchen_tamp.world.checked_pairs``
 decides for every collision model, read here as plain names), and a pair listed
 with an allowance (an intended contact) collides only when it penetrates deeper
-than that.
+than that (a margin does not apply to it).
 
 How answers differ from PyBullet's. Both collide the Panda's .obj meshes as
 their convex hulls (Drake for a `Mesh` in point-contact and signed-distance
@@ -290,9 +290,12 @@ class DrakeCollisionChecker:
 
     def _collides(self, q: JointConfiguration) -> bool:
         query = self._query_at(q)
-        if self._allowances:
+        if self._allowances:  # an intended contact may touch to its allowance, whatever the margin
             pairs = query.ComputeSignedDistancePairwiseClosestPoints(max(self.margin, 0.0))
-            return any(pair.distance + self._allowance(pair) < self.margin for pair in pairs)
+            return any(
+                pair.distance < (-allowance if (allowance := self._allowance(pair)) > 0.0 else self.margin)
+                for pair in pairs
+            )
         if self.margin > 0.0:
             pairs = query.ComputeSignedDistancePairwiseClosestPoints(self.margin)
             return any(pair.distance < self.margin for pair in pairs)
@@ -315,12 +318,15 @@ class DrakeCollisionChecker:
     def _closest_pair(self, q: JointConfiguration) -> tuple[Any, float] | None:
         """The pair nearest to colliding and its distance plus allowance, or None."""
         pairs = self._query_at(q).ComputeSignedDistancePairwiseClosestPoints(self.distance_horizon)
-        measured = [(pair, float(pair.distance) + self._allowance(pair)) for pair in pairs]
-        return min(measured, key=lambda item: item[1], default=None)
+        measured = [(pair, float(pair.distance), self._allowance(pair)) for pair in pairs]
+        # an intended contact counts only when deeper than allowed, from its allowed depth
+        counted = [(pair, d + a) for pair, d, a in measured if a == 0.0 or d + a < 0.0]
+        return min(counted, key=lambda item: item[1], default=None)
 
     def min_distance(self, q: JointConfiguration) -> float:
         """Smallest signed distance (m, negative when penetrating; an intended contact counted
-        from its allowed depth) over the checked pairs, capped at ``distance_horizon``."""
+        only when deeper than allowed, from its allowed depth) over the checked pairs, capped
+        at ``distance_horizon``."""
         closest = self._closest_pair(np.asarray(q, dtype=float))
         return self.distance_horizon if closest is None else min(closest[1], self.distance_horizon)
 

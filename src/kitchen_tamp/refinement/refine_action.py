@@ -1,5 +1,8 @@
 """Refine one action in the kitchen: its skill gives targets, a motion back end connects
-the arm to them, and the scene advances to the action's outcome.
+the arm to them, the judge's replay of the whole action (``kitchen.replay_action``, at
+the judge's resolution with its contact policy) must find nothing, and the scene
+advances to the outcome that replay derives -- so an accepted step is one the judge
+accepts, and a step it would reject is a failed sample.
 
 This is one sample of the kitchen's trajectory sampler; ``kitchen_sesame``
 decides which action to sample next, how often, and when to step back.
@@ -13,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, sample_action_targets
+from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, replay_action, sample_action_targets
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
@@ -117,14 +120,25 @@ def refine_action(
             seconds=seconds,
         )
         return None, record
-    move = Segment(
-        FREE_SPACE_SEGMENT,
-        solution.path,
-        np.full(len(solution.path), targets.gripper_width),
-        attached_box=targets.held_box,
-    )
+    move = Segment(FREE_SPACE_SEGMENT, solution.path, np.full(len(solution.path), targets.gripper_width))
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
-    targets.apply(kitchen)
+    before = kitchen.scene.save_state()
+    judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False)
+    if judged.problems:
+        kitchen.scene.restore_state(before)
+        record = ActionSampleRecord(
+            index=index,
+            action=action.text,
+            planner=backend.name,
+            solved=False,
+            skill_samples=targets.samples_tried,
+            motion_attempts=solution.attempts,
+            motion=motion,
+            waypoints=0,
+            rejections=(f"the judge's replay of sample 1 rejects it: {judged.problems[0]}",),
+            seconds=seconds,
+        )
+        return None, record
     record = ActionSampleRecord(
         index=index,
         action=action.text,

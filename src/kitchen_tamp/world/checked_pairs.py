@@ -11,7 +11,9 @@ the links of its body that move relative to them and against every other body.
 An intended contact (``AllowedContact``: the fingers on the box being grasped,
 the gripper on the handle being pulled, a box on its support) does not remove
 a pair: it lets the pair touch down to ``max_penetration``; deeper is a
-collision. ``CheckedPairs.policy()`` gives the same table as plain data
+collision. Clearance margins do not apply to such a pair, and clearances leave
+it out while it is within its bound (counting it as ``distance +
+max_penetration`` when deeper). ``CheckedPairs.policy()`` gives the same table as plain data
 (``CheckedLinkPair`` by body and link names), which is what other collision
 models (Drake's, in ``motion``) check, so the pairs are decided here only.
 

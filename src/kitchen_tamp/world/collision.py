@@ -132,10 +132,12 @@ class PyBulletCollisionChecker:
         self._checked = CheckedPairs(robot, self.obstacles, self.carried, self.allowed)
         self._pairs = self._checked.pairs
         self._static_bounds = self._checked.static_bounds()
-        riding = tuple(a for a in scene.attachments if a.parent is not robot.body and a.child in self.obstacles)
-        self._checked_along = (
-            CheckedPairs(robot, self.obstacles, self.carried, self.allowed, riding) if riding else self._checked
+        riding = tuple(
+            a for a in scene.attachments if a.parent is not robot.body and a.child in self.obstacles
         )
+        self._checked_along = self._checked
+        if riding:
+            self._checked_along = CheckedPairs(robot, self.obstacles, self.carried, self.allowed, riding)
 
     def policy(self) -> tuple[CheckedLinkPair, ...]:
         """The pairs this checker checks with the arm alone moving, as plain data."""
@@ -203,18 +205,20 @@ class PyBulletCollisionChecker:
     def _distances(
         self, checked: CheckedPairs, horizon: float, static_bounds: FloatArray
     ) -> Iterator[tuple[int, float]]:
-        """(pair, signed distance plus its allowance) of the checked pairs at the current state
-        that come within ``horizon`` less their allowance."""
+        """(pair, how far it is from colliding) for the checked pairs within ``horizon`` at the
+        current state: a pair's distance less the margin, or for an intended contact its
+        distance plus its allowance (the margin does not apply to what is meant to touch)."""
         client, ids, allowances = self._client, checked.pair_ids, checked.allowances
         for k, _ in checked.candidates(horizon, static_bounds):
             uid_a, link_a, uid_b, link_b = ids[k]
             allowance = float(allowances[k])
+            offset = allowance if allowance > 0.0 else -self.margin
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
-                yield k, float(point[8]) + allowance
+                yield k, float(point[8]) + offset
 
     def _collides_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> bool:
         horizon = max(self.margin, 0.0)
-        return any(d < self.margin for _, d in self._distances(checked, horizon, static_bounds))
+        return any(d < 0.0 for _, d in self._distances(checked, horizon, static_bounds))
 
     def _clearance_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> float:
         """Smallest distance up to the horizon: pairs in order of their bounds' gap until the
@@ -228,7 +232,9 @@ class PyBulletCollisionChecker:
             uid_a, link_a, uid_b, link_b = checked.pair_ids[k]
             allowance = float(checked.allowances[k])
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
-                best = min(best, float(point[8]) + allowance)
+                distance = float(point[8]) + allowance
+                if allowance == 0.0 or distance < 0.0:  # an intended contact counts only when too deep
+                    best = min(best, distance)
         return best
 
     # -- batches -----------------------------------------------------------------------------------
@@ -291,7 +297,8 @@ class PyBulletCollisionChecker:
 
     def min_clearance(self, qs: FloatArray) -> FloatArray:
         """Smallest signed distance (m, negative when penetrating) per configuration,
-        capped at ``CLEARANCE_HORIZON``; an intended contact counts from its allowed depth."""
+        capped at ``CLEARANCE_HORIZON``; an intended contact counts only when deeper than
+        allowed, from its allowed depth."""
         return self._clearances(np.atleast_2d(np.asarray(qs, dtype=float)))
 
     def min_clearance_along(
@@ -305,14 +312,17 @@ class PyBulletCollisionChecker:
     def colliding_pairs(
         self, q: FloatArray, along: tuple[Body, Sequence[str], FloatArray] | None = None
     ) -> list[tuple[str, str]]:
-        """Names of the pairs closer than the margin (less their allowance) at ``q``, with
+        """Names of the pairs closer than the margin (intended contacts: deeper than their
+        allowance) at ``q``, with
         ``along``'s joints at the given values (for error messages)."""
         horizon, names = max(self.margin, 0.0), []
         checked = self._checked if along is None else self._checked_along
-        moved = None if along is None else (along[0], along[1], np.atleast_2d(np.asarray(along[2], dtype=float)))
+        moved = None
+        if along is not None:
+            moved = (along[0], along[1], np.atleast_2d(np.asarray(along[2], dtype=float)))
         with self._in_snapshot(only_arm_moves=along is None):
             static_bounds = self._place(np.asarray(q, dtype=float), moved)
-            colliding = {k for k, d in self._distances(checked, horizon, static_bounds) if d < self.margin}
+            colliding = {k for k, d in self._distances(checked, horizon, static_bounds) if d < 0.0}
             for k in sorted(colliding):
                 body_a, link_a, body_b, link_b = checked.pairs[k]
                 first = body_a.link_name(link_a) if body_a is self.robot.body else body_a.name

@@ -4,8 +4,9 @@
 its base is and where its movable joints are; which bodies ride on which links
 and how; the robot's arm joints, limits and gripper links; and the link pairs a
 collision check checks, each with the depth it may touch (the pair policy of
-``checked_pairs``, decided there once for every collision model). ``describe_collision_checker`` does the same for the
-scene as a ``PyBulletCollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
+``checked_pairs``, decided there once for every collision model).
+``describe_collision_checker`` does the same for the scene as a
+``PyBulletCollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
 (``a_from_b`` maps b-coordinates to a), frames are URDF link frames.
 
 Each body's URDF is the file the ``Scene`` loaded it from, unless the caller
