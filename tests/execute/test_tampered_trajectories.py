@@ -159,9 +159,8 @@ def test_replay_refuses_a_tampered_copy_naming_step_and_segment(
 
 
 def test_replay_accepts_the_untouched_copy(tmp_path: Path, good_run: dict[str, Any]) -> None:
-    """In the first format (its declarations ignored); the current format is replayed by the
-    CLI tests of every fresh run."""
-    code, problems = _replay(tmp_path, _first_format(good_run))
+    """As a run writes it; the tampered copies above show the first format is read too."""
+    code, problems = _replay(tmp_path, good_run)
     assert code == 0 and problems == []
 
 
