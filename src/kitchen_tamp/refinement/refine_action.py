@@ -105,50 +105,28 @@ def refine_action(
     solution = backend.solve(start, targets.goal_configuration, checker, targets.free_space_checker, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
     seconds = {"skills_s": skills_s, "motion_s": solution.seconds, **solution.timings}
-    if solution.path is None:
-        rejection = f"no {backend.name} path to the targets of sample 1: {solution.status}"
-        record = ActionSampleRecord(
+
+    def record(trajectory: ActionTrajectory | None, rejection: str | None) -> ActionSampleRecord:
+        return ActionSampleRecord(
             index=index,
             action=action.text,
             planner=backend.name,
-            solved=False,
+            solved=trajectory is not None,
             skill_samples=targets.samples_tried,
             motion_attempts=solution.attempts,
             motion=motion,
-            waypoints=0,
-            rejections=(rejection,),
+            waypoints=0 if trajectory is None else trajectory.waypoint_count,
+            rejections=() if rejection is None else (rejection,),
             seconds=seconds,
         )
-        return None, record
+
+    if solution.path is None:
+        return None, record(None, f"no {backend.name} path to the targets of sample 1: {solution.status}")
     move = Segment(FREE_SPACE_SEGMENT, solution.path, np.full(len(solution.path), targets.gripper_width))
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
     before = kitchen.scene.save_state()
     judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False)
     if judged.problems:
         kitchen.scene.restore_state(before)
-        record = ActionSampleRecord(
-            index=index,
-            action=action.text,
-            planner=backend.name,
-            solved=False,
-            skill_samples=targets.samples_tried,
-            motion_attempts=solution.attempts,
-            motion=motion,
-            waypoints=0,
-            rejections=(f"the judge's replay of sample 1 rejects it: {judged.problems[0]}",),
-            seconds=seconds,
-        )
-        return None, record
-    record = ActionSampleRecord(
-        index=index,
-        action=action.text,
-        planner=backend.name,
-        solved=True,
-        skill_samples=targets.samples_tried,
-        motion_attempts=solution.attempts,
-        motion=motion,
-        waypoints=trajectory.waypoint_count,
-        rejections=(),
-        seconds=seconds,
-    )
-    return trajectory, record
+        return None, record(None, f"the judge's replay of sample 1 rejects it: {judged.problems[0]}")
+    return trajectory, record(trajectory, None)
