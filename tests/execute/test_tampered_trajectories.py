@@ -66,7 +66,8 @@ def _detour_into_the_cabinet(task: Task, refined: KitchenTrajectory, data: dict[
         inside = world_from_tool.translated(0.10 * world_from_tool.rotation[:, 2])
         detour = kitchen.ik.solve(inside, np.random.default_rng(0), seeds=[grasp])
         assert detour is not None
-        assert np.linalg.norm(kitchen.robot.forward_kinematics(detour).translation - inside.translation) < 0.01
+        reached = kitchen.robot.forward_kinematics(detour).translation
+        assert np.linalg.norm(reached - inside.translation) < 0.01
     move = _segment(data, 0, "move")
     move["configurations"] = [move["configurations"][0], detour.tolist(), move["configurations"][-1]]
     move["gripper_widths"] = [move["gripper_widths"][0]] * 3
@@ -174,7 +175,8 @@ def test_a_layout_that_overlaps_is_bad_input(tmp_path: Path, capsys: pytest.Capt
         "  (:goal (and (boxOn baguette stove))))\n"
     )
     domain = PROBLEM.parent / "domain.pddl"
-    code = main(["rrt", "--problem", str(problem), "--domain", str(domain), "--no-video", "--out", str(tmp_path)])
+    arguments = ["--problem", str(problem), "--domain", str(domain), "--no-video", "--out", str(tmp_path)]
+    code = main(["rrt", *arguments])
     error = capsys.readouterr().err
     assert code == 2
     assert "overlapping bodies" in error and "baguette/baguette" in error and "kitchen/countertop" in error

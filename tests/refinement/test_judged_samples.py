@@ -47,7 +47,8 @@ def test_a_move_the_judge_refuses_is_a_failed_sample() -> None:
         backend = DetourBackend(colliding)
         trajectory, record = refine_action(kitchen, 0, opening, backend, np.random.default_rng(0))
         assert trajectory is None and not record.solved
-        assert record.rejections[0].startswith("the judge's replay of sample 1 rejects it: (open drawer) move: ")
+        rejection = record.rejections[0]
+        assert rejection.startswith("the judge's replay of sample 1 rejects it: (open drawer) move: ")
         assert "collision" in record.rejections[0]
         assert np.array_equal(kitchen.arm_configuration(), home)
         assert kitchen.opening("drawer") == kitchen.opening_limits("drawer")[0]
