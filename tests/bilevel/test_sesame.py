@@ -6,7 +6,14 @@ from dataclasses import replace
 
 import pytest
 
-from kitchen_tamp.bilevel import Outcome, PlanningCounts, backtracking_refinement, greedy_refinement, sesame
+from kitchen_tamp.bilevel import (
+    Outcome,
+    PlanningCounts,
+    SampleEvent,
+    backtracking_refinement,
+    greedy_refinement,
+    sesame,
+)
 from kitchen_tamp.bilevel.toy_rooms import (
     blocked_doorway,
     no_door_to_goal,
@@ -80,6 +87,47 @@ def test_backtracking_tries_k_samples_per_step_before_stepping_back() -> None:
     assert result.counts == PlanningCounts(k + k * k, failures=k * k, backtracks=k - 1, abstract_plans=1)
     assert attempt.outcome is Outcome.STEPS_EXHAUSTED
     assert "step 2 (s1->s2) last failed: s1->s2 refused sample 16" in attempt.detail
+
+
+# A budget far above what try-counting spends: were successes not counted, a step that always
+# succeeds would never give up and these runs would end on SAMPLE_BUDGET instead.
+_GENEROUS_MAX_SAMPLES = 10_000
+
+
+@pytest.mark.parametrize("length", [1, 2, 3])
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_a_dead_end_costs_k_plus_k_squared_up_to_k_to_the_n_samples(length: int, k: int) -> None:
+    # every step succeeds except the last, which always fails: each success enters the next step afresh
+    problem = chain_problem(length, lambda action, _: action == f"s{length - 1}->s{length}")
+    result = backtracking_refinement(problem, seed=0, samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES)
+    (attempt,) = result.attempts
+    assert attempt.outcome is Outcome.STEPS_EXHAUSTED
+    assert [step.samples for step in attempt.steps] == [k ** (i + 1) for i in range(length)]
+    assert result.counts.samples == sum(k ** (i + 1) for i in range(length))
+
+
+def test_a_step_gives_up_after_k_tries_since_entered_successes_included() -> None:
+    k = 3
+    # step 1 always succeeds, step 2 refuses its odd-numbered samples, step 3 always fails
+    problem = chain_problem(
+        3, lambda action, sample: action == "s2->s3" or (action == "s1->s2" and sample % 2 == 1))
+    events: list[SampleEvent[str, str]] = []
+    result = sesame(problem, seed=0, max_plans=1, samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES,
+                    on_sample=events.append)
+    assert result.outcome is Outcome.PLAN_BUDGET
+    dead_end = [(3, False)] * k
+    expected = [
+        # step 2's first visit: refused, accepted (step 3 gives up), refused: three tries, two failures
+        (1, True), (2, False), (2, True), *dead_end, (2, False),
+        # step 1 again; step 2 is entered afresh with three tries, two of them accepted
+        (1, True), (2, True), *dead_end, (2, False), (2, True), *dead_end,
+        (1, True), (2, False), (2, True), *dead_end, (2, False),
+    ]  # step 1 has had its three tries: the plan is abandoned
+    assert [(e.step_index + 1 if e.step_index is not None else 0, e.succeeded) for e in events] == expected
+    first, second, third = result.attempts[0].steps
+    assert (first.samples, first.failures, first.backtracks) == (k, 0, k - 1)
+    assert (second.samples, second.failures) == (3 * k, 5)
+    assert (third.samples, third.failures) == (4 * k, 4 * k)
 
 
 def test_backtracking_goes_back_as_far_as_needed() -> None:

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from kitchen_tamp.cli.activity_planning import main
+from tests.cli.interrupt import interrupt_once_printed
 from tests.planning.conftest import DATA, KITCHEN, REPO
 
 DOMAIN = str(KITCHEN / "domain.pddl")
@@ -134,3 +135,37 @@ def test_missing_file_and_bad_options_exit_2(capsys: pytest.CaptureFixture[str])
     with pytest.raises(SystemExit) as exit_info:
         main(["--planner", "dijkstra"])
     assert exit_info.value.code == 2
+
+
+@pytest.mark.parametrize("where", ["under a file", "a folder"])
+def test_an_unwritable_plan_out_is_refused_before_planning(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path, where: str) -> None:
+    blocker = tmp_path / "notes.txt"
+    blocker.write_text("not a folder")
+    plan_out = blocker / "kitchen.plan" if where == "under a file" else tmp_path
+    code, out, err = run_main(capsys, "--plan-out", str(plan_out))
+    assert code == 2 and out == ""  # nothing was planned
+    expected = f"{blocker} is a file, not a folder" if where == "under a file" else "is a folder, not a file"
+    assert err.strip().splitlines() == [f"error: --plan-out {plan_out}: {expected}"]
+
+
+SWITCHES_DOMAIN = """(define (domain switches) (:requirements :strips :typing) (:types switch)
+  (:predicates (on ?s - switch) (off ?s - switch))
+  (:action turn-on :parameters (?s - switch)
+    :precondition (off ?s) :effect (and (on ?s) (not (off ?s))))
+  (:action turn-off :parameters (?s - switch)
+    :precondition (on ?s) :effect (and (off ?s) (not (on ?s)))))"""
+
+
+def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
+    switches = [f"s{i}" for i in range(24)]  # breadth-first search meets 2^24 states before the goal
+    domain = write(tmp_path, SWITCHES_DOMAIN, "domain.pddl")
+    problem = write(tmp_path, f"""(define (problem all-on) (:domain switches)
+      (:objects {' '.join(switches)} - switch)
+      (:init {' '.join(f'(off {s})' for s in switches)})
+      (:goal (and {' '.join(f'(on {s})' for s in switches)})))""")
+    args = [problem, "--domain", domain, "--planner", "bfs", "--timeout", "120"]
+    run = interrupt_once_printed("pddl/activity_planning.py", args, line_prefix="problem all-on")
+    assert run.returncode == 130, run.stderr
+    assert run.stderr.strip().splitlines() == ["interrupted"]
+    assert "BFS plan" not in run.stdout

@@ -13,6 +13,7 @@ import pytest
 from kitchen_tamp.cli import final_project
 from kitchen_tamp.cli.final_project import main
 from kitchen_tamp.refinement import MotionSolution
+from tests.cli.interrupt import interrupt_once_printed
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -212,3 +213,63 @@ def test_step_waits_for_enter_before_each_action(
     plan = _report(hard_run)["plan"]
     assert len(prompts) == len(plan)
     assert all(action in prompt for action, prompt in zip(plan, prompts, strict=True))
+
+
+@pytest.mark.parametrize("mode", ["rrt", "replay"])
+@pytest.mark.parametrize("where", ["under a file", "a file"])
+def test_an_unwritable_out_is_refused_before_planning(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], mode: str, where: str
+) -> None:
+    blocker = tmp_path / "notes.txt"
+    blocker.write_text("not a folder")
+    out = blocker / "run" if where == "under a file" else blocker
+    argv = ["rrt", "--out", str(out)] if mode == "rrt" else ["replay", str(tmp_path), "--out", str(out)]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    culprit = f"{blocker} " if where == "under a file" else ""
+    assert captured.err.strip() == f"error: --out {out}: {culprit}is a file, not a folder"
+    assert captured.out == ""  # nothing was planned or replayed
+    assert blocker.read_text() == "not a folder"
+
+
+def test_a_kitchen_model_that_does_not_match_the_map_is_a_setup_error(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from kitchen_tamp.kitchen import layout
+
+    urdf = layout.KITCHEN_URDF.read_text()
+    assert urdf.count('"robot_mount"') >= 1
+    renamed = tmp_path / "kitchen.urdf"
+    renamed.write_text(urdf.replace('"robot_mount"', '"robot_stand"'))
+    monkeypatch.setattr(layout, "KITCHEN_URDF", renamed)
+    assert main(["rrt", "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.strip() == ("error: the kitchen's model files do not match its kitchen map: "
+                           "body 'kitchen' has no link 'robot_mount'")
+
+
+def test_no_nonlinear_solver_is_a_setup_error_found_before_planning(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError
+
+    def no_solver() -> None:
+        raise NoNonlinearSolverError("Drake has neither SNOPT nor IPOPT available")
+
+    monkeypatch.setattr(final_project, "nonlinear_solver", no_solver)
+    assert main(["optimizes", "--out", str(tmp_path / "run")]) == 2
+    captured = capsys.readouterr()
+    assert captured.err.strip().splitlines() == [
+        "error: optimizes needs a nonlinear solver: Drake has neither SNOPT nor IPOPT available; "
+        "use rrt, or a Drake build that has one"]
+    assert captured.out == "" and not (tmp_path / "run").exists()
+
+
+def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
+    out = tmp_path / "run"
+    run = interrupt_once_printed("final_project.py", ["rrt", "--problem", "problem_hard.pddl", "--no-video",
+                                                      "--out", str(out)], line_prefix="[plan 1, step 1]")
+    assert run.returncode == 130, run.stderr
+    assert run.stderr.strip().splitlines()[-1] == "interrupted"
+    assert "Traceback" not in run.stderr and "SOLVED" not in run.stdout  # neither verdict
+    assert not (out / "report.json").exists()

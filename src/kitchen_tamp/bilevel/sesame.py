@@ -11,10 +11,22 @@ The one loop behind three planners:
   one sample per step, so the first failure ends the run.
 
 Backtracking: step ``i`` is sampled from the state the previous step reached.
-A success moves on to step ``i + 1``; a step that has failed ``samples_per_step``
-times since it was last entered gives up and step ``i - 1`` is sampled again
-(one backtrack), with its own count carrying on. When the first step gives up,
-the abstract plan is abandoned and the next one is tried.
+A success moves on to step ``i + 1``; a step that has been sampled
+``samples_per_step`` times since it was last entered, successes included, gives
+up and step ``i - 1`` is sampled again (one backtrack), with its own count
+carrying on. When the first step gives up, the abstract plan is abandoned and
+the next one is tried.
+
+Why tries and not failures: a sample that succeeded but whose later steps all
+gave up has failed too, only further down. Counting failures alone would let a
+step whose samples always succeed resample forever in front of a dead end (with
+``samples_per_step=1``, greedy refinement would not even stop at its first
+failure), and SeSamE would reach its next abstract plan only through a sample
+budget. Counting tries
+bounds one plan of ``n`` steps at ``K + K**2 + ... + K**n`` samples for
+``K = samples_per_step``, as in the original SeSamE (Silver et al., "Learning
+Symbolic Operators for Task and Motion Planning", 2021), whose low-level search
+also counts every try of a step.
 """
 
 from __future__ import annotations
@@ -93,6 +105,7 @@ def _refine_with_backtracking(
                 f"({counter.action}) last failed: {counter.last_failure}")
 
     while step < len(transitions):
+        # Every draw counts against the step, a success too: see the module docstring.
         if tries_since_entered[step] >= samples_per_step:
             tries_since_entered[step] = 0
             step -= 1
@@ -135,9 +148,10 @@ def sesame(
     """Try abstract plans best first, refining each with backtracking, until one is refined.
 
     Budgets (``None``: unlimited): ``max_plans`` abstract plans, ``samples_per_step``
-    samples per visit of a step before backtracking, ``max_samples`` samples in
-    all, ``max_samples_per_plan`` samples on any one abstract plan before moving
-    to the next, ``time_budget_s`` seconds (checked before every sample). The
+    samples per visit of a step (successes included) before backtracking,
+    ``max_samples`` samples in all, ``max_samples_per_plan`` samples on any one
+    abstract plan before moving to the next, ``time_budget_s`` seconds (checked
+    before every sample). The
     seed fixes both the order of equally good abstract plans and every sample.
     """
     if samples_per_step < 1:

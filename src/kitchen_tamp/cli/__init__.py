@@ -1,5 +1,8 @@
 """Argument parsing and exit codes for the entry scripts (see DESIGN.md)."""
 
+import sys
+import traceback
+from collections.abc import Callable
 from enum import IntEnum
 
 
@@ -8,5 +11,28 @@ class ExitCode(IntEnum):
 
     SOLVED = 0
     NO_PLAN = 1  # no plan exists, or refinement/search failed within its budget
-    BAD_INPUT = 2  # usage, unreadable or malformed file
+    BAD_INPUT = 2  # usage, unreadable or malformed file, unwritable output, a setup that cannot run
     INTERNAL_ERROR = 3
+    INTERRUPTED = 130  # Ctrl-C: 128 + SIGINT, as shells report it
+
+
+def exit_code_of(body: Callable[[], int], bad_input_line: Callable[[Exception], str | None]) -> int:
+    """Run a command's ``body`` and return its exit code, however it ends.
+
+    ``bad_input_line(error)`` is the one line for an error in the user's input or
+    setup (exit 2), ``None`` for a bug: that one gets its traceback and exit 3.
+    Ctrl-C says ``interrupted`` and exits 130.
+    """
+    try:
+        return body()
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return int(ExitCode.INTERRUPTED)
+    except Exception as error:
+        line = bad_input_line(error)
+        if line is not None:
+            print(f"error: {line}", file=sys.stderr)
+            return int(ExitCode.BAD_INPUT)
+        traceback.print_exc()
+        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
+        return int(ExitCode.INTERNAL_ERROR)

@@ -11,7 +11,8 @@ from pathlib import Path
 from typing import Any
 
 from kitchen_tamp.atomic_files import write_atomically
-from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli import ExitCode, exit_code_of
+from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
 from kitchen_tamp.planning import (
     SEARCH_DESCRIPTIONS,
     SEARCHES,
@@ -90,6 +91,8 @@ def _print_result(result: SearchResult) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.plan_out is not None:
+        check_output_file(args.plan_out, "--plan-out")
     started = time.perf_counter()
     task = load_task(args.problem, args.domain)
     ground_seconds = time.perf_counter() - started
@@ -133,14 +136,7 @@ def run(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
-    try:
-        return run(args)
-    except PlanningInputError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return int(ExitCode.BAD_INPUT)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return int(ExitCode.NO_PLAN)
-    except Exception as error:  # the last line of defence: one line, exit 3
-        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
-        return int(ExitCode.INTERNAL_ERROR)
+    return exit_code_of(
+        lambda: run(args),
+        lambda error: str(error) if isinstance(error, (PlanningInputError, OutputPathError)) else None,
+    )

@@ -8,7 +8,6 @@ import argparse
 import os
 import sys
 import time
-import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -16,7 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.bilevel import SampleEvent
-from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli import ExitCode, exit_code_of
+from kitchen_tamp.cli.output_paths import OutputPathError, check_output_folder
 from kitchen_tamp.execute import (
     FRAME_SECONDS,
     REPORT_FILE,
@@ -34,6 +34,7 @@ from kitchen_tamp.execute import (
     write_trajectory,
 )
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
+from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
@@ -45,6 +46,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
+from kitchen_tamp.world import UnknownNameError, WorldError
 
 SYMBOLIC_PLANNER = "bfs"
 """Search that gives the symbolic plan: breadth-first, so the plan is shortest."""
@@ -56,6 +58,10 @@ RRT_VARIANTS = {"connect": "rrt_connect", "basic": "rrt"}
 
 class UsageError(Exception):
     """A command line that cannot run as asked (exit 2)."""
+
+
+BAD_INPUT_ERRORS = (UsageError, OutputPathError, PlanningInputError, KitchenError, TrajectoryFileError)
+"""Errors in what the user gave (options, files, output folder): one line, exit 2."""
 
 
 def _integer_at_least(minimum: int) -> Callable[[str], int]:
@@ -135,8 +141,8 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
         if args.collision_model != "drake":
             raise UsageError("optimizes needs signed distances: use --collision-model drake (the default)")
-        settings = replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints)
-        return OptimizingMotionBackend(settings)
+        nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
+        return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
 
 
@@ -242,8 +248,9 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     backend = _motion_backend(args)
     problem = resolve_problem_path(args.problem).resolve()
     domain = Path(args.domain).resolve() if args.domain else problem.parent / "domain.pddl"
-    task = load_task(problem, domain)
     out_dir: Path = args.out or Path("out") / f"{problem.stem}-{args.mode}-seed{args.seed}"
+    check_output_folder(out_dir, "--out" if args.out else "output folder")
+    task = load_task(problem, domain)
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
     report.started = started
     with build_kitchen_for_task(task) as kitchen:
@@ -288,12 +295,13 @@ def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]
 def run_replay(args: argparse.Namespace, started: float) -> int:
     """``replay RUN_DIR``: verify and render a saved trajectory again, without planning."""
     _check_display(args)
+    out_dir: Path = args.out or args.run_dir
+    check_output_folder(out_dir, "--out" if args.out else "RUN_DIR")
     run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
     if run.ignored_fields:
         _say(f"note: not reading {', '.join(run.ignored_fields)} from the trajectory file: the judge "
              "derives them from the kitchen")
     task = load_task(run.problem, run.domain)
-    out_dir: Path = args.out or args.run_dir
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
     report.plan = run.trajectory.plan
     report.started = started
@@ -303,21 +311,23 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     return verify_and_render(task, run, out_dir, report, args, report_name="replay_report.json")
 
 
+def _bad_input_line(error: Exception) -> str | None:
+    """The one line for an error in the user's input or setup (exit 2); ``None`` for a bug."""
+    if isinstance(error, BAD_INPUT_ERRORS):
+        return str(error)
+    if isinstance(error, NoNonlinearSolverError):
+        return f"optimizes needs a nonlinear solver: {error}; use rrt, or a Drake build that has one"
+    if isinstance(error, UnknownNameError):
+        return f"the kitchen's model files do not match its kitchen map: {error}"
+    if isinstance(error, WorldError):
+        return f"the kitchen could not be set up: {error}"
+    return None
+
+
 def main(argv: Sequence[str] | None = None, started: float | None = None) -> int:
     """Run the command line; returns the exit code (see ``ExitCode``)."""
-    started = time.perf_counter() if started is None else started
+    run_started = time.perf_counter() if started is None else started
     args = build_parser().parse_args(argv)
-    try:
-        if args.mode == "replay":
-            return run_replay(args, started)
-        return run_plan(args, started)
-    except (UsageError, PlanningInputError, KitchenError, TrajectoryFileError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return int(ExitCode.BAD_INPUT)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return int(ExitCode.NO_PLAN)
-    except Exception as error:  # a bug: say so, with the traceback, and exit 3
-        traceback.print_exc()
-        print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
-        return int(ExitCode.INTERNAL_ERROR)
+    if args.mode == "replay":
+        return exit_code_of(lambda: run_replay(args, run_started), _bad_input_line)
+    return exit_code_of(lambda: run_plan(args, run_started), _bad_input_line)
