@@ -124,8 +124,9 @@ def refine_action(
         return None, record(None, f"no {backend.name} path to the targets of sample 1: {solution.status}")
     move = Segment(FREE_SPACE_SEGMENT, solution.path, np.full(len(solution.path), targets.gripper_width))
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
-    before = kitchen.scene.save_state()
+    before, clock = kitchen.scene.save_state(), time.perf_counter()
     judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False)
+    seconds["judge_replay_s"] = time.perf_counter() - clock
     if judged.problems:
         kitchen.scene.restore_state(before)
         return None, record(None, f"the judge's replay of sample 1 rejects it: {judged.problems[0]}")
