@@ -177,7 +177,8 @@ class DrakeCollisionChecker:
             self._instances = {body.name: _add_model(plant, body) for body in scene.bodies}
         self._weld(scene)
         plant.Finalize()
-        self._allowances: dict[frozenset[BodyIndex], float] = {}
+        self._allowances: dict[tuple[Any, Any], float] = {}
+        """(geometry, geometry) -> depth (m) the pair may penetrate, both orders, intended contacts only."""
         self.contact_pairs: dict[frozenset[str], float] = {}
         """Pairs (as ``model/link`` names) that may touch down to the given depth (m)."""
         self.checked_pairs = self._filter_unchecked_pairs(scene, scene_graph)
@@ -267,8 +268,9 @@ class DrakeCollisionChecker:
             else:
                 kept.append(frozenset((self._scoped(a), self._scoped(b))))
                 if checked[key] > 0.0:
-                    self._allowances[key] = checked[key]
                     self.contact_pairs[kept[-1]] = checked[key]
+                    for first, second in itertools.product(geometries_a, geometries_b):
+                        self._allowances[first, second] = self._allowances[second, first] = checked[key]
         scene_graph.collision_filter_manager().Apply(declaration)
         return frozenset(kept)
 
@@ -280,21 +282,22 @@ class DrakeCollisionChecker:
         return self._query_port.Eval(self._context)
 
     def _allowance(self, pair: Any) -> float:
-        """The depth (m) a signed-distance pair of geometries may penetrate."""
-        if not self._allowances:
-            return 0.0
-        key = frozenset(
-            (self._geometry_bodies[pair.id_A][0].index(), self._geometry_bodies[pair.id_B][0].index())
-        )
-        return self._allowances.get(key, 0.0)
+        """The depth (m) a pair of geometries (a distance or penetration result) may penetrate."""
+        return self._allowances.get((pair.id_A, pair.id_B), 0.0) if self._allowances else 0.0
 
     def _collides(self, q: JointConfiguration) -> bool:
         query = self._query_at(q)
-        if self._allowances:  # an intended contact may touch to its allowance, whatever the margin
-            pairs = query.ComputeSignedDistancePairwiseClosestPoints(max(self.margin, 0.0))
+        # an intended contact may touch to its allowance, whatever the margin
+        if self._allowances and self.margin > 0.0:
+            pairs = query.ComputeSignedDistancePairwiseClosestPoints(self.margin)
             return any(
                 pair.distance < (-allowance if (allowance := self._allowance(pair)) > 0.0 else self.margin)
                 for pair in pairs
+            )
+        if self._allowances:
+            return any(
+                pair.depth > (allowance if (allowance := self._allowance(pair)) > 0.0 else -self.margin)
+                for pair in query.ComputePointPairPenetration()
             )
         if self.margin > 0.0:
             pairs = query.ComputeSignedDistancePairwiseClosestPoints(self.margin)
