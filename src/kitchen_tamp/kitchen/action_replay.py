@@ -163,6 +163,7 @@ class _Replayer:
         self.contacts = intended_contacts(kitchen, args)
         self.carried = _carried_now(kitchen)
         self.gripped: Gripped | None = None
+        self._took = False
         self.result = ActionReplay()
 
     def _take_hold(self) -> bool:
@@ -219,33 +220,32 @@ class _Replayer:
         key: tuple[float, int, str | None] | None = None
         for i in range(len(samples)):
             width = float(samples.gripper_widths[i])
-            robot.set_gripper_width(width)
-            robot.set_configuration(samples.configurations[i])
-            if self.gripped is not None:
-                self._drag(self.gripped)
-            if self.carried is not None and width > self.carried.width + OPEN_TOLERANCE:
-                kitchen.release(self.carried.box)
-                self.carried = None
-            if self.gripped is not None and width > self.gripped.width + OPEN_TOLERANCE:
-                self.gripped = None
-            if width < previous_width - OPEN_TOLERANCE:
-                closing = True
-                if self.carried is None and self.gripped is None:
-                    took = self._take_hold() or took
-            elif closing:
+            # Nothing can change while the fingers keep their width and hold no handle: the
+            # scene is posed only where something may happen (and at the segment's end).
+            quiet = i > 0 and abs(width - previous_width) <= OPEN_TOLERANCE and self.gripped is None
+            if not quiet:
+                robot.set_gripper_width(width)
+                robot.set_configuration(samples.configurations[i])
+                self._advance(width, previous_width)
+            if closing and width >= previous_width - OPEN_TOLERANCE:
                 if not took:
                     self._closed_on_nothing(where)
                 closing = took = False
+            if width < previous_width - OPEN_TOLERANCE:
+                closing = True
+                took = took or self._took
             previous_width = width
             carried.append(self.carried)
             for drawer in drawers:
-                openings[drawer][i] = kitchen.opening(drawer)
+                openings[drawer][i] = openings[drawer][i - 1] if quiet else kitchen.opening(drawer)
             state = (width, id(self.carried), None if self.gripped is None else self.gripped.drawer)
-            if state != key:
+            if not quiet and state != key:
                 if runs:
                     runs[-1].end = i
                 runs.append(_Run(i, kitchen.collision_checker(self.contacts), state[2]))
                 key = state
+        robot.set_gripper_width(float(samples.gripper_widths[-1]))
+        robot.set_configuration(samples.configurations[-1])
         if closing and not took:
             self._closed_on_nothing(where)
         runs[-1].end = len(samples)
@@ -255,6 +255,21 @@ class _Replayer:
         for run in runs:
             if not self._check(where, samples, openings, run) and not self.measure:
                 return
+
+    def _advance(self, width: float, previous_width: float) -> None:
+        """The events at a state the scene is posed in: the drawer follows a gripping hand,
+        opening fingers let go, closing fingers take hold of what they hold (``_took``)."""
+        kitchen = self.kitchen
+        self._took = False
+        if self.gripped is not None:
+            self._drag(self.gripped)
+        if self.carried is not None and width > self.carried.width + OPEN_TOLERANCE:
+            kitchen.release(self.carried.box)
+            self.carried = None
+        if self.gripped is not None and width > self.gripped.width + OPEN_TOLERANCE:
+            self.gripped = None
+        if width < previous_width - OPEN_TOLERANCE and self.carried is None and self.gripped is None:
+            self._took = self._take_hold()
 
     def _drag(self, gripped: Gripped) -> None:
         kitchen = self.kitchen
