@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: install demo test lint bench clean
+.PHONY: install browser demo test lint bench clean
 
 install: $(STAMP)
 
@@ -15,6 +15,10 @@ $(STAMP): pyproject.toml requirements.txt requirements-dev.txt
 	$(BIN)/python -m pip install --quiet -r requirements-dev.txt
 	$(BIN)/python -m pip install --quiet --no-deps -e .
 	touch $(STAMP)
+
+# Debian's Chromium for the replay.html browser test (which skips, saying why, without it).
+browser:
+	command -v chromium >/dev/null || (apt-get update && apt-get install -y chromium)
 
 demo: install
 	$(BIN)/python final_project.py rrt
@@ -32,8 +36,6 @@ bench: install
 	$(BIN)/python benchmarks/collision.py
 	$(BIN)/python benchmarks/trajopt.py
 	$(BIN)/python benchmarks/bilevel.py
-	$(BIN)/python benchmarks/kitchen_runs.py --mode rrt
-	$(BIN)/python benchmarks/kitchen_runs.py --mode optimizes
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache

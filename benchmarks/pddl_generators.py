@@ -1,14 +1,18 @@
-"""Seeded generators of benchmark PDDL problems: blocks world, gripper, a scaled kitchen.
+"""Benchmark PDDL problems: seeded generators (blocks world, gripper, a scaled kitchen) and real IPC files.
 
-Each generator returns (domain text, problem text). The domains are plain
-STRIPS with typing so that every peer planner parses them.
+Each returns (domain text, problem text). The generated domains are plain
+STRIPS with typing so that every peer planner parses them; the IPC problems
+(``benchmarks/ipc/``, sources in its README) are STRIPS with typing too.
 """
 
 from __future__ import annotations
 
 import itertools
+from pathlib import Path
 
 import numpy as np
+
+IPC_DIR = Path(__file__).resolve().parent / "ipc"
 
 BLOCKS_DOMAIN = """(define (domain blocks)
   (:requirements :strips)
@@ -129,3 +133,9 @@ def scaled_kitchen(boxes: int, surfaces: int, drawers: int, seed: int) -> tuple[
                f" {' '.join(box_names)} - box)\n"
                f"  (:init {' '.join(init)})\n  (:goal (and {' '.join(goal_atoms)})))\n")
     return KITCHEN_STRIPS_DOMAIN, problem
+
+
+def ipc_problem(domain: str, problem: str) -> tuple[str, str]:
+    """An IPC problem kept in ``benchmarks/ipc/DOMAIN/`` (see the README there for its source)."""
+    folder = IPC_DIR / domain
+    return (folder / "domain.pddl").read_text(), (folder / problem).read_text()

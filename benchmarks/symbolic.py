@@ -1,4 +1,9 @@
-"""Symbolic planning speed against pyperplan and Fast Downward, in one process run.
+"""Symbolic planning speed against pyperplan and Fast Downward: whole processes, then phases in-process.
+
+First, what a user pays: each planner run as a fresh process per problem and
+search (``symbolic_process``: wall time, alternating, medians), on the kitchen,
+generated problems and real IPC problems (``benchmarks/ipc/``). Then the
+in-process comparison below, which leaves out process start-up and imports.
 
 For each problem and each search, our whole run (parse + translate + ground +
 search) is timed against pyperplan's (parse + ground + search) with the same
@@ -15,16 +20,18 @@ Pairings (ours / pyperplan / Fast Downward):
 - ``astar``: A* with h_max / ``astar`` + ``hmax`` / ``astar(hmax())``
 - ``ehc``: enforced hill climbing, h_FF, helpful actions first / ``ehs`` + ``hff``
   with preferred operators (pruning, no fallback) / ``ehc(h, preferred=[h])``
-- ``gbfs``: greedy best-first, h_FF, preferred-operator queue / ``gbf`` + ``hff`` with
-  preferred operators (pruning) / ``eager_greedy([h], preferred=[h], boost=1000)``
+- ``gbfs``: greedy best-first, h_FF, alternating preferred/all queues boosted on progress /
+  ``gbf`` + ``hff`` with preferred operators (pruning) /
+  ``eager_greedy([h], preferred=[h], boost=1000)``
 - ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
   pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
 
 Afterwards a second table splits one run per problem into phases (parse domain,
 parse problem, translate, ground; pyperplan: parse, ground).
 
-    python benchmarks/symbolic.py            # the full table (about 20 minutes)
-    python benchmarks/symbolic.py --quick    # small problems only
+    python benchmarks/symbolic.py                  # everything (about 30 minutes)
+    python benchmarks/symbolic.py --process-only   # the whole-process table only
+    python benchmarks/symbolic.py --quick          # small problems only
 """
 
 from __future__ import annotations
@@ -49,7 +56,8 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from pddl_generators import blocks_world, gripper, scaled_kitchen
+from pddl_generators import blocks_world, gripper, ipc_problem, scaled_kitchen
+from symbolic_process import process_table
 
 from kitchen_tamp.planning import SearchResult, Task, plan, validate_plan
 from kitchen_tamp.planning.grounding import ground
@@ -101,9 +109,24 @@ class Problem:
     searches: tuple[str, ...]
 
 
+IPC_PROBLEMS: list[tuple[str, str, tuple[str, ...]]] = [
+    ("transport", "task01.pddl", ("bfs", "astar", "gbfs")),
+    ("transport", "task04.pddl", ("gbfs",)),
+    ("elevators", "task01.pddl", ("gbfs",)),
+    ("elevators", "task03.pddl", ("gbfs",)),
+    ("scanalyzer", "task01.pddl", ("bfs", "gbfs")),
+    ("sokoban", "task01.pddl", ("bfs", "gbfs")),
+    ("mystery", "instance-10.pddl", ("gbfs",)),
+]
+"""(domain folder, problem file, searches): the real IPC set; blind and h_max searches where they finish."""
+
+
 def problems(quick: bool) -> list[Problem]:
     every = ("bfs", "astar", "ehc", "gbfs", "ehc-plain", "gbfs-plain")
     guided = ("ehc", "gbfs")
+    ipc = [Problem(f"{domain}-{file.removesuffix('.pddl')}",
+                   lambda domain=domain, file=file: ipc_problem(domain, file), searches)  # type: ignore[misc]
+           for domain, file, searches in IPC_PROBLEMS]
     items = [
         Problem("kitchen", lambda: _kitchen_files("problem.pddl"), every),
         Problem("kitchen-hard", lambda: _kitchen_files("problem_hard.pddl"), every),
@@ -126,7 +149,7 @@ def problems(quick: bool) -> list[Problem]:
                     (*guided, "ehc-plain", "gbfs-plain")),
             Problem("kitchen-16b-20s-3d", lambda: scaled_kitchen(16, 20, 3, 2), guided),
         ]
-    return items
+    return items + (ipc[:2] if quick else ipc)
 
 
 def _kitchen_files(problem: str) -> tuple[str, str]:
@@ -330,6 +353,10 @@ def main() -> int:
     parser.add_argument("--no-fd", action="store_true", help="skip Fast Downward")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
     parser.add_argument("--only", help="comma-separated problem names to run")
+    parser.add_argument("--process-only", action="store_true",
+                        help="only the whole-process table (no in-process tables)")
+    parser.add_argument("--rounds", type=int, default=5,
+                        help="alternating fresh-process runs per row in the whole-process table")
     parser.add_argument("--pyperplan-worker", nargs=3, metavar=("DOMAIN", "PROBLEM", "SEARCH"),
                         help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -339,6 +366,20 @@ def main() -> int:
     logging.getLogger().setLevel(logging.WARNING)
     fd = None if args.no_fd else fast_downward_script()
     selected = [p for p in problems(args.quick) if not args.only or p.name in args.only.split(",")]
+    with tempfile.TemporaryDirectory() as tmp:
+        rows = []
+        for item in selected:
+            domain_text, problem_text = item.make()
+            domain, problem = Path(tmp) / f"{item.name}-domain.pddl", Path(tmp) / f"{item.name}.pddl"
+            domain.write_text(domain_text)
+            problem.write_text(problem_text)
+            rows.append((item.name, domain, problem, item.searches))
+        # One run first, so that byte code and our grammar cache are built (as after any first run).
+        run_ours_once(rows[0][1], rows[0][2], "bfs", args.timeout)
+        process_table(rows, Path(tmp), fd, args.timeout, args.rounds)
+    if args.process_only:
+        return 0
+    print()
 
     header = (f"{'problem':20} {'search':10} {'ours s':>8} {'pp s':>8} {'ratio':>6} {'FD s':>7} "
               f"{'len ours/pp/FD':>15} {'expanded ours/pp/FD':>22}")

@@ -137,6 +137,22 @@ def test_missing_file_and_bad_options_exit_2(capsys: pytest.CaptureFixture[str])
     assert exit_info.value.code == 2
 
 
+def test_the_planner_cli_imports_no_numpy_pybullet_or_drake(tmp_path: Path) -> None:
+    # A fresh interpreter: this test process has numpy loaded by other tests.
+    probe = (
+        "import sys\n"
+        "from kitchen_tamp.cli.activity_planning import main\n"
+        "code = main(['problem_hard.pddl', '--planner', 'all', '--plan-out', sys.argv[1]])\n"
+        "heavy = sorted(m for m in sys.modules if m.split('.')[0] in {'numpy', 'pybullet', 'pydrake'})\n"
+        "print('heavy modules:', heavy)\n"
+        "sys.exit(code)\n")
+    result = subprocess.run([sys.executable, "-c", probe, str(tmp_path / "plan.txt")],
+                            cwd=REPO, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert "7. placeOn spam stove" in result.stdout
+    assert "heavy modules: []" in result.stdout
+
+
 @pytest.mark.parametrize("where", ["under a file", "a folder"])
 def test_an_unwritable_plan_out_is_refused_before_planning(
         capsys: pytest.CaptureFixture[str], tmp_path: Path, where: str) -> None:

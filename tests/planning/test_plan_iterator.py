@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import itertools
+import random
 
 import numpy as np
 
@@ -24,6 +25,16 @@ def test_seeded_tie_breaking_is_reproducible(small_task: Task) -> None:
         return [tuple(str(a) for a in p) for p in plans]
 
     assert first(7) == first(7)
+
+
+def test_a_stdlib_random_source_breaks_ties_as_reproducibly(small_task: Task) -> None:
+    def first(seed: int) -> list[tuple[str, ...]]:
+        plans = itertools.islice(iter_plans(small_task, rng=random.Random(seed)), 6)
+        return [tuple(str(a) for a in p) for p in plans]
+
+    assert first(3) == first(3)
+    lengths = [len(p) for p in first(3)]
+    assert lengths == sorted(lengths)
 
 
 def test_max_length_bounds_the_enumeration(small_task: Task) -> None:

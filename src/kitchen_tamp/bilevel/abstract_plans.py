@@ -2,12 +2,12 @@
 
 The reachable abstract graph is explored once (breadth-first, up to
 ``max_abstract_states``) and every state's exact distance to a goal is computed
-backwards over it. Plans are then enumerated by a tree search over action
-sequences ordered by ``length + distance to goal``: since that distance never
-overestimates what a path still needs, plans come out in non-decreasing
-length, and only states that can still reach a goal are ever expanded. A path
-never revisits one of its own abstract states, so every plan is acyclic and the
-enumeration ends. Plans of equal length are ordered by the seeded RNG.
+backwards over it. Plans are then enumerated by the planning package's
+``shortest_plans_first`` (a tree search over action sequences ordered by
+``length + distance to goal``, see ``planning.search.plan_iterator``): plans come
+out in non-decreasing length, only states that can still reach a goal are ever
+expanded, and every plan is acyclic. Plans of equal length are ordered by the
+seeded RNG.
 
 When the reachable graph is larger than ``max_abstract_states`` the distances
 are unknown and the search is uniform-cost (every distance taken as 0).
@@ -15,50 +15,20 @@ are unknown and the search is uniform-cost (every distance taken as 0).
 
 from __future__ import annotations
 
-import heapq
-import itertools
 import math
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
-from typing import Generic, TypeVar
+from typing import TypeVar
 
 import numpy as np
 
 from kitchen_tamp.bilevel.abstraction import AbstractPlan, AbstractPlanGenerator
+from kitchen_tamp.planning import shortest_plans_first
 
 S = TypeVar("S")
 A = TypeVar("A")
 
 DEFAULT_MAX_ABSTRACT_STATES = 100_000
-
-
-class _PathNode(Generic[S, A]):
-    """One node of the plan tree: an abstract state and the path that reached it."""
-
-    __slots__ = ("action", "length", "parent", "state")
-
-    def __init__(self, state: S, parent: _PathNode[S, A] | None, action: A | None) -> None:
-        self.state, self.parent, self.action = state, parent, action
-        self.length: int = 0 if parent is None else parent.length + 1
-
-    def visits(self, state: S) -> bool:
-        node: _PathNode[S, A] | None = self
-        while node is not None:
-            if node.state == state:
-                return True
-            node = node.parent
-        return False
-
-    def plan(self) -> AbstractPlan[S, A]:
-        states: list[S] = []
-        actions: list[A] = []
-        node: _PathNode[S, A] | None = self
-        while node is not None:
-            states.append(node.state)
-            if node.action is not None:
-                actions.append(node.action)
-            node = node.parent
-        return AbstractPlan(tuple(reversed(states)), tuple(reversed(actions)))
 
 
 def goal_distances(
@@ -113,27 +83,8 @@ def shortest_first_plans(
                 return 0.0
             return distances.get(state, math.inf)
 
-        order = itertools.count()
-        root: _PathNode[S, A] = _PathNode(initial, None, None)
-        if distance(initial) == math.inf:
-            return
-        heap: list[tuple[float, float, int, _PathNode[S, A]]] = [
-            (distance(initial), float(rng.random()), next(order), root)]
-        while heap:
-            _, _, _, node = heapq.heappop(heap)
-            if is_goal(node.state):
-                yield node.plan()
-                continue  # a path through a goal is never a new shortest plan
-            if max_length is not None and node.length >= max_length:
-                continue
-            for action, child in successors(node.state):
-                remaining = distance(child)
-                if remaining == math.inf or node.visits(child):
-                    continue
-                bound = node.length + 1 + remaining
-                if max_length is not None and bound > max_length:
-                    continue
-                child_node = _PathNode(child, node, action)
-                heapq.heappush(heap, (bound, float(rng.random()), next(order), child_node))
+        for states, actions in shortest_plans_first(initial, successors, is_goal, distance,
+                                                    rng=rng, max_length=max_length):
+            yield AbstractPlan(states, actions)
 
     return generate

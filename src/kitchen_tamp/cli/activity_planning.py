@@ -10,7 +10,6 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
 from kitchen_tamp.planning import (
@@ -115,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
             _print_result(result)
     last = results[-1]
     if args.plan_out is not None and last.plan is not None:
+        from kitchen_tamp.atomic_files import write_atomically  # tempfile: imported only when writing
+
         write_atomically(args.plan_out, plan_text(last.plan))
     if args.json:
         print(json.dumps({

@@ -33,6 +33,7 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
+from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, write_timeline_replay
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
@@ -81,7 +82,9 @@ def _integer_at_least(minimum: int) -> Callable[[str], int]:
 
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
-    parser.add_argument("--no-video", action="store_true", help="do not render replay.gif")
+    parser.add_argument("--no-video", action="store_true", help="do not render replay.gif and replay.html")
+    parser.add_argument("--meshcat", action="store_true",
+                        help="serve a live 3D viewer (Meshcat) on this machine while the program runs")
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
     parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
 
@@ -172,6 +175,12 @@ def _stuck_step(outcome: SesameRefinement) -> tuple[int | None, str | None]:
     return step.index + 1, step.action.text
 
 
+def _start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
+    live = LiveViewer(kitchen)
+    _say(f"live viewer (Meshcat) at {live.url} while this program runs")
+    return live
+
+
 def _wait_for_enter(index: int, action: str) -> None:
     input(f"step {index + 1}: {action}  (press Enter)")
 
@@ -194,12 +203,14 @@ def verify_and_render(
     report: RunReport,
     args: argparse.Namespace,
     report_name: str = REPORT_FILE,
+    live: LiveViewer | None = None,
 ) -> int:
     """Verify ``run`` in a fresh kitchen, plot and render it, write the report; the exit code."""
     clock = time.perf_counter()
     trajectory = run.trajectory
     wait = _wait_for_enter if args.step and not args.gui else None
     with build_kitchen_for_task(task, gui=args.gui) as fresh:
+        live = _start_live_viewer(fresh) if args.meshcat and live is None else live
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
         timeline = build_timeline(trajectory, verification.tracks)
@@ -216,9 +227,12 @@ def verify_and_render(
     if show_velocities:
         title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles and velocities"
     report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, show_velocities).name
-    report.outputs["gif"] = None
+    report.outputs["gif"] = report.outputs["html"] = None
     if not args.no_video:
         with build_kitchen_for_task(task) as kitchen:
+            html_clock = time.perf_counter()
+            report.outputs["html"] = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, live).name
+            report.timing["html_s"] = time.perf_counter() - html_clock
             images = render_replay(kitchen, timeline)
         report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
         _say(f"rendered {len(images)} frames of the replay")
@@ -254,6 +268,13 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER)
     report.started = started
     with build_kitchen_for_task(task) as kitchen:
+        live = _start_live_viewer(kitchen) if args.meshcat else None
+
+        def on_sample(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
+            _progress(event, record)
+            if live is not None:
+                live.update()
+
         report.timing["startup_s"] = time.perf_counter() - started
         clock = time.perf_counter()
         result = plan(task, SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
@@ -267,7 +288,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         clock = time.perf_counter()
         budgets = SesameBudgets(args.max_plans, args.samples_per_step, args.max_samples)
         outcome = refine_with_sesame(
-            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=_progress
+            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=on_sample
         )
         report.timing["refinement_s"] = time.perf_counter() - clock
         report.bilevel = outcome.report_data()
@@ -281,7 +302,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     _record_step_timing(report, refined.records)
     run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)
     report.outputs["trajectory"] = write_trajectory(out_dir / TRAJECTORY_FILE, run).name
-    return verify_and_render(task, run, out_dir, report, args)
+    return verify_and_render(task, run, out_dir, report, args, live=live)
 
 
 def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]) -> None:

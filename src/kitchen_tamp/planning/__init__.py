@@ -13,7 +13,7 @@ from kitchen_tamp.planning.loading import load_task
 from kitchen_tamp.planning.search.best_first import astar_search, greedy_best_first_search
 from kitchen_tamp.planning.search.breadth_first import breadth_first_search
 from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
-from kitchen_tamp.planning.search.plan_iterator import iter_plans
+from kitchen_tamp.planning.search.plan_iterator import RandomSource, iter_plans, shortest_plans_first
 from kitchen_tamp.planning.search.registry import SEARCH_DESCRIPTIONS, SEARCHES, plan
 from kitchen_tamp.planning.search.result import SearchResult
 from kitchen_tamp.planning.task import Atom, GroundAction, State, Task, atom_text
@@ -31,6 +31,7 @@ __all__ = [
     "GroundAction",
     "PlanValidation",
     "PlanningInputError",
+    "RandomSource",
     "RelaxedExploration",
     "SearchResult",
     "State",
@@ -46,5 +47,6 @@ __all__ = [
     "parse_plan_text",
     "plan",
     "plan_text",
+    "shortest_plans_first",
     "validate_plan",
 ]

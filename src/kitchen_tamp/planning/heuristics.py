@@ -33,7 +33,7 @@ import heapq
 from collections.abc import Callable
 from typing import Literal
 
-from kitchen_tamp.planning.task import State, Task, bits
+from kitchen_tamp.planning.task import State, Task, bits, mask_of
 
 INFINITY = float("inf")
 
@@ -62,6 +62,34 @@ def _relevant_actions(task: Task) -> list[int]:
     return sorted(relevant)
 
 
+Entry = tuple[int, int, int]
+"""A relevant action in the relaxed exploration: (precondition mask, add mask, action index)."""
+
+
+KeyedEntries = tuple[int, dict[int, tuple[Entry, ...]], tuple[Entry, ...]]
+"""Entries grouped by key atom: (mask of the key atoms, groups by key bit, entries without preconditions)."""
+
+
+def _entries_by_key(task: Task, entries: list[Entry]) -> KeyedEntries:
+    """The entries grouped by their action's key atom (``Task.key_atoms``).
+
+    An action cannot fire before its key atom is reached, so a relaxed
+    exploration only tests the groups whose key it has reached. Returns the
+    mask of key atoms, the groups by key bit, and the actions without
+    preconditions.
+    """
+    keys = task.key_atoms()
+    keyed: dict[int, list[Entry]] = {}
+    unkeyed: list[Entry] = []
+    for entry in entries:
+        key = keys[entry[2]]
+        if key >= 0:
+            keyed.setdefault(1 << key, []).append(entry)
+        else:
+            unkeyed.append(entry)
+    return mask_of(k.bit_length() - 1 for k in keyed), {k: tuple(v) for k, v in keyed.items()}, tuple(unkeyed)
+
+
 class RelaxedExploration:
     """Precomputed structure for fast relaxed explorations of one task."""
 
@@ -83,6 +111,7 @@ class RelaxedExploration:
         self.add_masks = [a.add for a in task.actions]
         relevant = _relevant_actions(task)
         self.entries = [(self.pre_masks[i], self.add_masks[i], i) for i in relevant]
+        self.key_mask, self.entries_by_key, self.unkeyed_entries = _entries_by_key(task, self.entries)
         achievers: list[list[int]] = [[] for _ in range(n_atoms)]
         for index in relevant:
             for atom in self.adds_of[index]:
@@ -146,14 +175,16 @@ class RelaxedExploration:
         Stops at the first layer holding the whole goal; None if the goal is
         relaxed-unreachable. This loop is where h_max and h_FF spend their time:
         one mask test per pending action and layer; an action leaves the
-        pending list once it has fired.
+        pending list once it has fired, and joins it only once its key atom
+        (its least used precondition, see ``_entries_by_key``) is reached, so
+        actions that never come near applicable cost nothing.
         """
         goal = self.task.goal
         reached = state
         new_atoms = [state]
-        pending = self.entries
+        pending = self._activate(state, list(self.unkeyed_entries))
         while reached & goal != goal:
-            waiting = []
+            waiting: list[Entry] = []
             added = 0
             for entry in pending:
                 pre = entry[0]
@@ -166,8 +197,18 @@ class RelaxedExploration:
                 return None
             new_atoms.append(added)
             reached |= added
-            pending = waiting
+            pending = self._activate(added, waiting)
         return new_atoms
+
+    def _activate(self, atoms: int, pending: list[Entry]) -> list[Entry]:
+        """``pending`` plus the actions keyed by one of ``atoms`` (which have just been reached)."""
+        keys = atoms & self.key_mask
+        by_key = self.entries_by_key
+        while keys:
+            low = keys & -keys
+            keys ^= low
+            pending.extend(by_key[low])
+        return pending
 
     def layers(self, state: State) -> Graph | None:
         """The relaxed planning graph from ``state`` up to the first layer with the goal.

@@ -1,9 +1,10 @@
 """From PDDL files to a grounded ``Task``: parse, translate, ground; each domain is translated once.
 
-Parsing the domain with the ``pddl`` package is the largest fixed cost of a
-small task (its Lark parser runs in pure Python, ~2 ms for the kitchen
-domain), and a process often loads many problems of one domain (the bilevel
-planner, the benchmarks, the tests). So the checked ``DomainModel`` is kept per
+Parsing the domain with the ``pddl`` package is the largest cost of loading a
+small task once its Lark parsers are loaded (see ``grammar_cache``): the
+parser runs in pure Python, ~2 ms for the kitchen domain, and a process often
+loads many problems of one domain (the bilevel planner, the benchmarks, the
+tests). So the checked ``DomainModel`` is kept per
 (path, text): a domain file that has not changed is not parsed again.
 ``clear_domain_cache`` forgets them, e.g. to time cold loads.
 """

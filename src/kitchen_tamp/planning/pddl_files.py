@@ -9,19 +9,20 @@ the offending name in the file text.
 from __future__ import annotations
 
 import re
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from typing import TypeVar
 
+from lark import Lark
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
 from pddl.core import Domain, Problem
-from pddl.parser.domain import DomainParser
-from pddl.parser.problem import ProblemParser
+from pddl.parser.domain import DomainTransformer
+from pddl.parser.problem import ProblemTransformer
 
 from kitchen_tamp.planning.errors import PlanningInputError
+from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
 
 T = TypeVar("T")
 
@@ -104,28 +105,24 @@ def _syntax_error(error: Exception, path: Path, what: str) -> PlanningInputError
 
 
 @cache
-def _domain_parser() -> DomainParser:
-    """Building the Lark grammar costs ~0.1 s, so each process builds it once."""
-    return DomainParser()
+def _lark_parser(start: StartSymbol) -> Lark:
+    """Each process loads each parser once (from the grammar cache, see ``grammar_cache``)."""
+    return pddl_parser(start)
 
 
-@cache
-def _problem_parser() -> ProblemParser:
-    return ProblemParser()
+def _parse_domain_text(text: str) -> Domain:
+    return parse_with(_lark_parser("domain"), DomainTransformer(), text)
+
+
+def _parse_problem_text(text: str) -> Problem:
+    return parse_with(_lark_parser("problem"), ProblemTransformer(), text)
 
 
 def _parse(path: Path, text: str, what: str, parser: Callable[[str], T]) -> tuple[T, PddlSource]:
-    limit = getattr(sys, "tracebacklimit", None)
     try:
         parsed = parser(text)
     except Exception as error:  # lark's syntax errors and the pddl package's own checks
         raise _syntax_error(error, path, what) from None
-    finally:
-        # The pddl package zeroes sys.tracebacklimit while parsing and leaves it so on errors.
-        if limit is None:
-            sys.__dict__.pop("tracebacklimit", None)
-        else:
-            sys.tracebacklimit = limit
     return parsed, PddlSource(path, text)
 
 
@@ -136,9 +133,9 @@ def parse_domain(path: Path) -> tuple[Domain, PddlSource]:
 
 def parse_domain_text(path: Path, text: str) -> tuple[Domain, PddlSource]:
     """Parse a domain already read from ``path``; a syntax error names file, line and column."""
-    return _parse(path, text, "domain", _domain_parser())
+    return _parse(path, text, "domain", _parse_domain_text)
 
 
 def parse_problem(path: Path) -> tuple[Problem, PddlSource]:
     """Parse a problem file; a syntax error names file, line and column."""
-    return _parse(path, read_pddl(path, "problem"), "problem", _problem_parser())
+    return _parse(path, read_pddl(path, "problem"), "problem", _parse_problem_text)

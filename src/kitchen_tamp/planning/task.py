@@ -146,6 +146,24 @@ class Task:
             and not state & self.goal_neg
         )
 
+    def key_atoms(self) -> list[int]:
+        """Each action's key atom: its precondition atom used by the fewest actions (-1: none).
+
+        An action cannot apply (or fire, in a relaxed exploration) before its
+        key atom holds, so grouping actions by key lets a loop skip the groups
+        whose key is false. Built once per task.
+        """
+        keys = self.__dict__.get("_key_atoms")
+        if keys is None:
+            uses = [0] * len(self.atoms)
+            for action in self.actions:
+                for atom in action.pre_ids:
+                    uses[atom] += 1
+            keys = [min(action.pre_ids, key=lambda atom: (uses[atom], atom)) if action.pre_ids else -1
+                    for action in self.actions]
+            object.__setattr__(self, "_key_atoms", keys)
+        return keys
+
     def successor_table(self) -> SuccessorTable:
         """Actions keyed by their least common precondition atom, built once per task.
 
@@ -155,16 +173,11 @@ class Task:
         """
         table = self.__dict__.get("_successor_table")
         if table is None:
-            uses = [0] * len(self.atoms)
-            for action in self.actions:
-                for atom in action.pre_ids:
-                    uses[atom] += 1
             keyed: dict[int, list[ActionEntry]] = {}
             unconditional: list[ActionEntry] = []
-            for index, action in enumerate(self.actions):
+            for index, (action, key) in enumerate(zip(self.actions, self.key_atoms(), strict=True)):
                 entry = (action.pre, action.pre_neg, ~action.delete, action.add, index)
-                if action.pre_ids:
-                    key = min(action.pre_ids, key=lambda atom: (uses[atom], atom))
+                if key >= 0:
                     keyed.setdefault(1 << key, []).append(entry)
                 else:
                     unconditional.append(entry)

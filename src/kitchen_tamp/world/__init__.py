@@ -4,7 +4,7 @@ A ``Scene`` owns one physics client and its bodies (looked up by name); a
 ``Robot`` gives an arm's configuration, gripper and forward kinematics;
 ``InverseKinematics`` solves for tool poses with seeded restarts; a
 ``PyBulletCollisionChecker`` answers batch validity queries for motion planners;
-``render`` takes headless pictures.
+``render`` takes headless pictures; ``visual_shapes`` says what a body looks like.
 """
 
 from kitchen_tamp.world.attachment import Attachment
@@ -28,6 +28,7 @@ from kitchen_tamp.world.scene_description import (
     describe_scene,
 )
 from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike, rotation_about_axis
+from kitchen_tamp.world.visual_shapes import VisualKind, VisualShape, visual_shapes
 
 __all__ = [
     "BASE_LINK",
@@ -55,6 +56,8 @@ __all__ = [
     "SceneState",
     "UnknownNameError",
     "VectorLike",
+    "VisualKind",
+    "VisualShape",
     "WorldError",
     "describe_collision_checker",
     "describe_scene",
@@ -64,6 +67,7 @@ __all__ = [
     "rotation_about_axis",
     "straight_line",
     "tile",
+    "visual_shapes",
     "write_png",
 ]
 

@@ -65,6 +65,7 @@ class Body:
         self._joint_by_name = {j.name: j for j in self.joints}
         dynamics = p.getDynamicsInfo(uid, BASE_LINK, physicsClientId=client)
         self._base_from_com = Pose.from_parts(dynamics[3], dynamics[4])
+        self._com_from_base = self._base_from_com.inverse()
 
     def _num_joints(self) -> int:
         return int(p.getNumJoints(self.uid, physicsClientId=self.client))
@@ -139,6 +140,31 @@ class Body:
             return self.base_pose()
         state = p.getLinkState(self.uid, index, computeForwardKinematics=True, physicsClientId=self.client)
         return Pose.from_parts(state[4], state[5])
+
+    def link_frames(self, links: Sequence[str]) -> tuple[FloatArray, FloatArray]:
+        """World positions (n, 3) and quaternions (n, 4; x, y, z, w) of the named links' URDF
+        frames, read in one call (for recording many frames; ``link_pose`` for one pose)."""
+        indices = [self.link_index(link) for link in links]
+        positions = np.zeros((len(indices), 3))
+        quaternions = np.zeros((len(indices), 4))
+        moving = [i for i, index in enumerate(indices) if index != BASE_LINK]
+        if moving:
+            states = p.getLinkStates(
+                self.uid,
+                [indices[i] for i in moving],
+                computeForwardKinematics=True,
+                physicsClientId=self.client,
+            )
+            for i, state in zip(moving, states, strict=True):
+                positions[i], quaternions[i] = state[4], state[5]
+        if len(moving) < len(indices):
+            world_from_com = p.getBasePositionAndOrientation(self.uid, physicsClientId=self.client)
+            com_from_base = self._com_from_base
+            base = p.multiplyTransforms(*world_from_com, com_from_base.position, com_from_base.quaternion)
+            for i, index in enumerate(indices):
+                if index == BASE_LINK:
+                    positions[i], quaternions[i] = base
+        return positions, quaternions
 
     def link_com_pose(self, link: str) -> Pose:
         """``world_from_com`` of the named link (the frame its collision shapes are given in)."""

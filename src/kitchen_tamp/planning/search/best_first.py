@@ -5,15 +5,10 @@ whether a state reached again by a cheaper path is reopened. Ties are broken
 first-in first-out, so runs are deterministic.
 
 GBFS with h_FF also uses the helpful actions (preferred operators) of each
-state, as enforced hill climbing does: only the children reached by a helpful
-action of their parent are evaluated and queued; the others are set aside, and
-when the queue runs dry they are all evaluated and queued, and the search goes
-on. So the search stays complete, but evaluates (the costly part) about a
-quarter of the states an eager search over every child evaluates, with the
-same expansions on blocks world and gripper. Fast Downward instead queues the
-helpful children in a second queue that takes turns with the full one, which
-guards better against helpful actions that mislead for a long time, but
-evaluates every child.
+state by default: ``alternating_greedy`` keeps the children they reach in a
+second queue that takes turns with the queue of all children, boosted while
+it makes progress, as Fast Downward does (eager, or lazy with
+``lazy=True``). ``preferred_operators=False`` is the plain search here.
 """
 
 from __future__ import annotations
@@ -21,14 +16,9 @@ from __future__ import annotations
 import heapq
 import itertools
 
-from kitchen_tamp.planning.heuristics import (
-    INFINITY,
-    Heuristic,
-    HeuristicName,
-    RelaxedExploration,
-    make_heuristic,
-)
-from kitchen_tamp.planning.search.breadth_first import unsolvable_message
+from kitchen_tamp.planning.heuristics import INFINITY, Heuristic, HeuristicName, make_heuristic
+from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
+from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
 
@@ -38,15 +28,17 @@ Entry = tuple[float, float, int, int, State]
 
 def greedy_best_first_search(
     task: Task, *, heuristic: HeuristicName = "hff", preferred_operators: bool = True,
-    time_budget: float | None = None, max_expansions: int | None = None,
+    lazy: bool = False, time_budget: float | None = None, max_expansions: int | None = None,
 ) -> SearchResult:
     """Expand the state with the lowest h first; fast, plans not necessarily shortest.
 
-    ``preferred_operators`` (h_FF only): children reached by helpful actions first, the others
-    only when those run out.
+    ``preferred_operators`` (h_FF only): a second queue of the children reached
+    by helpful actions takes turns with the queue of all children, boosted on
+    progress; ``lazy``: with it, children are evaluated when taken out of a
+    queue, not when generated (see ``alternating_greedy``).
     """
     if heuristic == "hff" and preferred_operators:
-        return _preferred_greedy(task, RelaxedExploration(task), SearchBudget(time_budget, max_expansions))
+        return alternating_greedy_search(task, SearchBudget(time_budget, max_expansions), lazy=lazy)
     return _best_first(task, "gbfs", make_heuristic(task, heuristic), greedy=True,
                        time_budget=time_budget, max_expansions=max_expansions)
 
@@ -60,12 +52,6 @@ def astar_search(
                        time_budget=time_budget, max_expansions=max_expansions)
 
 
-def _dead_root(task: Task, planner: str, budget: SearchBudget) -> SearchResult:
-    return SearchResult(planner, "unsolvable", None, 0, 1, 1, budget.elapsed(),
-                        unsolvable_message(task, 1) if task.trivially_unsolvable
-                        else "unsolvable: the goal is unreachable even ignoring delete effects")
-
-
 def _best_first(
     task: Task, planner: str, h: Heuristic, *, greedy: bool, time_budget: float | None,
     max_expansions: int | None,
@@ -75,7 +61,7 @@ def _best_first(
     h_root = h(root)
     evaluated = 1
     if h_root == INFINITY:
-        return _dead_root(task, planner, budget)
+        return dead_root_result(task, planner, budget)
     # From here on no goal atom is unreachable, so the goal test is two mask tests.
     goal, goal_neg = task.goal, task.goal_neg
     parents: dict[State, State | None] = {root: None}
@@ -119,59 +105,4 @@ def _best_first(
             priority = h_child if greedy else child_g + h_child
             heappush(heap, (priority, h_child, next(order), child_g, child))
     return SearchResult(planner, "unsolvable", None, expanded, len(parents), evaluated,
-                        budget.elapsed(), unsolvable_message(task, len(parents)))
-
-
-def _preferred_greedy(task: Task, exploration: RelaxedExploration, budget: SearchBudget) -> SearchResult:
-    """GBFS with h_FF that queues the helpful children and sets the others aside until the queue is empty."""
-    root = task.initial_state
-    h_root, helpful_root = exploration.h_ff_helpful(root)
-    if h_root == INFINITY:
-        return _dead_root(task, "gbfs", budget)
-    goal, goal_neg = task.goal, task.goal_neg
-    parents: dict[State, State | None] = {root: None}
-    helpful: dict[State, int] = {root: helpful_root}
-    order = itertools.count()
-    heap: list[tuple[float, int, State]] = [(h_root, next(order), root)]
-    set_aside: list[tuple[State, State]] = []  # (parent, child) reached by an action that is not helpful
-    heappop, heappush = heapq.heappop, heapq.heappush
-    evaluate, successors = exploration.h_ff_helpful, task.successor_indices
-    expanded, evaluated = 0, 1
-
-    def enqueue(parent: State, child: State) -> None:
-        nonlocal evaluated
-        parents[child] = parent
-        h_child, helpful_child = evaluate(child)
-        evaluated += 1
-        if h_child != INFINITY:  # else a dead end under the relaxation: no plan passes through it
-            helpful[child] = helpful_child
-            heappush(heap, (h_child, next(order), child))
-
-    check_at = 0.0
-    while heap or set_aside:
-        if not heap:
-            for parent, child in set_aside:
-                if child not in parents:
-                    enqueue(parent, child)
-            set_aside = []
-            continue
-        if expanded >= check_at:
-            if budget.exhausted(expanded):
-                return SearchResult("gbfs", "budget", None, expanded, len(parents), evaluated,
-                                    budget.elapsed(), budget.describe())
-            check_at = budget.next_check(expanded)
-        _, _, state = heappop(heap)
-        if state & goal == goal and not state & goal_neg:
-            return SearchResult("gbfs", "solved", plan_to(task, parents, state), expanded,
-                                len(parents), evaluated, budget.elapsed())
-        expanded += 1
-        preferred = helpful.pop(state)
-        for child, index in successors(state):
-            if child in parents:
-                continue
-            if (preferred >> index) & 1:
-                enqueue(state, child)
-            else:
-                set_aside.append((state, child))
-    return SearchResult("gbfs", "unsolvable", None, expanded, len(parents), evaluated,
                         budget.elapsed(), unsolvable_message(task, len(parents)))

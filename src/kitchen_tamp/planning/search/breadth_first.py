@@ -74,3 +74,10 @@ def unsolvable_message(task: Task, reachable_states: int) -> str:
         names = " ".join(sorted("(" + " ".join(a) + ")" for a in task.unreachable_goal_atoms))
         return f"unsolvable: goal atom(s) {names} can never become true"
     return f"unsolvable: none of the {reachable_states} reachable states satisfies the goal"
+
+
+def dead_root_result(task: Task, planner: str, budget: SearchBudget) -> SearchResult:
+    """A heuristic search's answer when the initial state is a dead end even under the delete relaxation."""
+    message = (unsolvable_message(task, 1) if task.trivially_unsolvable
+               else "unsolvable: the goal is unreachable even ignoring delete effects")
+    return SearchResult(planner, "unsolvable", None, 0, 1, 1, budget.elapsed(), message)

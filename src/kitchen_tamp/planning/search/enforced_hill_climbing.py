@@ -29,7 +29,7 @@ from kitchen_tamp.planning.heuristics import (
     RelaxedExploration,
     make_heuristic,
 )
-from kitchen_tamp.planning.search.breadth_first import unsolvable_message
+from kitchen_tamp.planning.search.breadth_first import dead_root_result
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import GroundAction, State, Task
 
@@ -76,9 +76,7 @@ def _climb(task: Task, evaluate: HelpfulHeuristic, budget: SearchBudget, prune: 
     h_state, helpful = evaluate(state)
     plan: list[GroundAction] = []
     if h_state == INFINITY:
-        message = (unsolvable_message(task, 1) if task.trivially_unsolvable
-                   else "unsolvable: the goal is unreachable even ignoring delete effects")
-        return SearchResult("ehc", "unsolvable", None, 0, 1, 1, budget.elapsed(), message)
+        return dead_root_result(task, "ehc", budget)
     goal, goal_neg = task.goal, task.goal_neg
     # Every evaluation of the climb, so that states met again on a later plateau are not re-evaluated.
     known: dict[State, tuple[float, int]] = {state: (h_state, helpful)}

@@ -1,75 +1,119 @@
-"""Plans in order of length, for planners that want more than one abstract plan.
+"""Plans in order of length, for planners that want more than one plan.
 
-A tree search over action sequences (no duplicate detection across branches,
-so distinct plans through the same states are all found) ordered by
-``length + h_max``. Because h_max never overestimates, goal paths come out in
-non-decreasing length. A path never revisits one of its own states, so every
-plan is acyclic and the enumeration ends on finite tasks. Equal lengths are
-ordered by an optional seeded RNG, else by generation order.
+``shortest_plans_first`` is a tree search over action sequences (no duplicate
+detection across branches, so distinct plans through the same states are all
+found) ordered by ``length + remaining``, where ``remaining(state)`` never
+overestimates the steps still needed; so goal paths come out in non-decreasing
+length. A path never revisits one of its own states, so every plan is acyclic
+and the enumeration ends on finite state spaces. Equal lengths are ordered by
+an optional seeded random source, else by generation order. It works over any
+state and action types: ``iter_plans`` runs it on a grounded ``Task`` with h_max,
+and the bilevel package's abstract plan generator on abstract states with exact
+goal distances.
 """
 
 from __future__ import annotations
 
 import heapq
 import itertools
-from collections.abc import Iterator
+import math
+from collections.abc import Callable, Iterable, Iterator
+from typing import Generic, Protocol, TypeVar
 
-import numpy as np
+from kitchen_tamp.planning.heuristics import make_heuristic
+from kitchen_tamp.planning.task import GroundAction, Task
 
-from kitchen_tamp.planning.heuristics import INFINITY, make_heuristic
-from kitchen_tamp.planning.task import GroundAction, State, Task
+S = TypeVar("S")
+A = TypeVar("A")
 
 
-class _PathNode:
-    __slots__ = ("action", "parent", "state")
+class RandomSource(Protocol):
+    """Anything with ``random() -> float`` in [0, 1): ``random.Random`` or a numpy ``Generator``."""
 
-    def __init__(self, state: State, parent: _PathNode | None, action: GroundAction | None) -> None:
+    def random(self) -> float: ...
+
+
+class PathNode(Generic[S, A]):
+    """One node of the plan tree: a state and the path that reached it."""
+
+    __slots__ = ("action", "length", "parent", "state")
+
+    def __init__(self, state: S, parent: PathNode[S, A] | None, action: A | None) -> None:
         self.state, self.parent, self.action = state, parent, action
+        self.length: int = 0 if parent is None else parent.length + 1
 
-    def plan(self) -> tuple[GroundAction, ...]:
-        steps: list[GroundAction] = []
-        node: _PathNode | None = self
-        while node is not None and node.action is not None:
-            steps.append(node.action)
-            node = node.parent
-        return tuple(reversed(steps))
-
-    def visits(self, state: State) -> bool:
-        node: _PathNode | None = self
+    def visits(self, state: S) -> bool:
+        """Whether the path from the root to this node passes through ``state``."""
+        node: PathNode[S, A] | None = self
         while node is not None:
             if node.state == state:
                 return True
             node = node.parent
         return False
 
+    def path(self) -> tuple[tuple[S, ...], tuple[A, ...]]:
+        """The states (root first) and actions along the path to this node."""
+        states: list[S] = []
+        actions: list[A] = []
+        node: PathNode[S, A] | None = self
+        while node is not None:
+            states.append(node.state)
+            if node.action is not None:
+                actions.append(node.action)
+            node = node.parent
+        return tuple(reversed(states)), tuple(reversed(actions))
 
-def iter_plans(
-    task: Task, *, rng: np.random.Generator | None = None, max_length: int | None = None
-) -> Iterator[tuple[GroundAction, ...]]:
-    """Yield every acyclic plan, shortest first (lazily: take what you need)."""
-    h = make_heuristic(task, "hmax")
-    h_root = h(task.initial_state)
-    if h_root == INFINITY:
-        return
-    order = itertools.count()
+
+def shortest_plans_first(
+    initial: S,
+    successors: Callable[[S], Iterable[tuple[A, S]]],
+    is_goal: Callable[[S], bool],
+    remaining: Callable[[S], float],
+    *,
+    rng: RandomSource | None = None,
+    max_length: int | None = None,
+) -> Iterator[tuple[tuple[S, ...], tuple[A, ...]]]:
+    """Every acyclic plan from ``initial`` as (states, actions), shortest first (lazily).
+
+    ``remaining(state)``: a lower bound on the steps from ``state`` to a goal,
+    ``math.inf`` where none is reachable (those states are never queued). Each
+    queued node draws one ``rng.random()`` for its tie-break, the root first,
+    so a seeded source gives the same order every run.
+    """
 
     def tie() -> float:
-        return float(rng.random()) if rng is not None else 0.0
+        return rng.random() if rng is not None else 0.0
 
-    heap: list[tuple[float, float, int, int, _PathNode]] = [
-        (h_root, tie(), next(order), 0, _PathNode(task.initial_state, None, None))]
+    if remaining(initial) == math.inf:
+        return
+    order = itertools.count()
+    heap: list[tuple[float, float, int, PathNode[S, A]]] = [
+        (remaining(initial), tie(), next(order), PathNode(initial, None, None))]
     while heap:
-        _, _, _, g, node = heapq.heappop(heap)
-        if task.is_goal(node.state):
-            yield node.plan()
+        _, _, _, node = heapq.heappop(heap)
+        if is_goal(node.state):
+            yield node.path()
             continue  # a plan that passes through a goal state is not a new shortest plan
-        if max_length is not None and g >= max_length:
+        if max_length is not None and node.length >= max_length:
             continue
-        for action, child in task.successors(node.state):
-            if node.visits(child):
+        for action, child in successors(node.state):
+            to_go = remaining(child)
+            if to_go == math.inf or node.visits(child):
                 continue
-            h_child = h(child)
-            if h_child == INFINITY or (max_length is not None and g + 1 + h_child > max_length):
+            bound = node.length + 1 + to_go
+            if max_length is not None and bound > max_length:
                 continue
-            heapq.heappush(heap, (g + 1 + h_child, tie(), next(order), g + 1,
-                                  _PathNode(child, node, action)))
+            heapq.heappush(heap, (bound, tie(), next(order), PathNode(child, node, action)))
+
+
+def iter_plans(
+    task: Task, *, rng: RandomSource | None = None, max_length: int | None = None
+) -> Iterator[tuple[GroundAction, ...]]:
+    """Yield every acyclic plan of ``task``, shortest first (lazily: take what you need).
+
+    Ordered by length + h_max; equal lengths by ``rng`` if given, else by generation order.
+    """
+    for _, actions in shortest_plans_first(
+            task.initial_state, task.successors, task.is_goal, make_heuristic(task, "hmax"),
+            rng=rng, max_length=max_length):
+        yield actions

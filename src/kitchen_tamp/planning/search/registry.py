@@ -28,7 +28,7 @@ SEARCHES: dict[str, Search] = {
 SEARCH_DESCRIPTIONS: dict[str, str] = {
     "bfs": "breadth-first search (optimal)",
     "ehc": "enforced hill climbing with h_FF, helpful actions first",
-    "gbfs": "greedy best-first search with h_FF and preferred operators",
+    "gbfs": "greedy best-first search with h_FF, preferred and all successors in turn",
     "astar": "A* with h_max (optimal)",
 }
 

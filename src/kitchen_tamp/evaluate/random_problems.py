@@ -1,0 +1,203 @@
+"""Random kitchen problems: random valid starts of the kitchen's objects and random goals over them.
+
+The objects come from the kitchen map (``KITCHEN_MAP``: its surfaces, openables
+and boxes) and their types and predicates from the domain file, so a kitchen
+with other objects gets other problems. A start puts some of the boxes, one per
+place and leaving a place free, on surfaces or in openables, each openable open or closed; a goal asks
+for some of them in other places. A start is kept only if the kitchen lays it
+out (``build_kitchen`` checks Ψ of the built scene against ``:init``); every
+kept problem is also planned symbolically, and whether it has a plan is
+recorded: generality is measured over all of them, not only the easy ones.
+Problem ``i`` of ``--problem-seed S`` is the same file on every machine.
+"""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from kitchen_tamp.atomic_files import write_atomically
+from kitchen_tamp.kitchen import KITCHEN_MAP, KitchenError, KitchenMap, build_kitchen
+from kitchen_tamp.planning import Atom, atom_text, load_task, plan
+from kitchen_tamp.planning.loading import domain_model
+
+ON, IN, OPENED = "boxOn", "boxIn", "opened"
+SURFACE_CLEAR, OPENABLE_CLEAR, ARM_CLEAR = "surfClear", "cabClear", "armClear"
+PREDICATE_ARITIES = {ON: 2, IN: 2, OPENED: 1, SURFACE_CLEAR: 1, OPENABLE_CLEAR: 1, ARM_CLEAR: 0}
+"""The domain predicates a random problem is written with."""
+KITCHEN_TYPES = ("surface", "openable", "box")
+MAX_LAYOUT_ATTEMPTS = 50
+"""Random starts drawn for one problem before giving up on the kitchen laying any of them out."""
+SYMBOLIC_PLANNER = "bfs"
+SYMBOLIC_TIME_BUDGET_S = 30.0
+PROBLEM_PREFIX = "random-"
+RANDOM_PROBLEMS_DIR = "problems"
+"""A sweep writes its random problems (and the domain) into this sub-folder."""
+
+
+class RandomProblemError(Exception):
+    """The domain or the kitchen cannot give random problems (missing predicate or type, no layout)."""
+
+
+@dataclass(frozen=True)
+class KitchenObjects:
+    """The kitchen's objects by PDDL type, as the kitchen map has them."""
+
+    surfaces: tuple[str, ...]
+    openables: tuple[str, ...]
+    boxes: tuple[str, ...]
+
+    @property
+    def places(self) -> tuple[str, ...]:
+        return self.surfaces + self.openables
+
+    def type_of(self, name: str) -> str:
+        return "surface" if name in self.surfaces else "openable" if name in self.openables else "box"
+
+
+@dataclass(frozen=True)
+class RandomProblem:
+    """One generated problem and what was found out about it."""
+
+    name: str
+    path: Path
+    layout_attempts: int
+    """Random starts drawn until the kitchen laid one out (1 = the first)."""
+    solvable: bool
+    plan_length: int | None
+
+
+def kitchen_objects(domain: Path, kitchen_map: KitchenMap = KITCHEN_MAP) -> KitchenObjects:
+    """The map's objects, checked against the domain's types and predicates."""
+    model = domain_model(domain)
+    for type_name in KITCHEN_TYPES:
+        if model.type_names.get(type_name) is None:
+            raise RandomProblemError(f"{domain}: the domain has no type {type_name!r} for the kitchen")
+    for predicate, arity in PREDICATE_ARITIES.items():
+        if model.predicates.get(predicate) != arity:
+            raise RandomProblemError(
+                f"{domain}: random problems need the predicate ({predicate}) with {arity} arguments"
+            )
+    objects = KitchenObjects(
+        surfaces=tuple(sorted(kitchen_map.surfaces)),
+        openables=tuple(sorted(kitchen_map.openables)),
+        boxes=tuple(sorted(kitchen_map.boxes)),
+    )
+    if not objects.boxes or len(objects.places) < 2:
+        raise RandomProblemError("random problems need a box and two places for it in the kitchen map")
+    return objects
+
+
+def _location_atom(box: str, place: str, objects: KitchenObjects) -> Atom:
+    return (ON if place in objects.surfaces else IN, box, place)
+
+
+def _draw_start(rng: np.random.Generator, objects: KitchenObjects) -> tuple[dict[str, str], frozenset[Atom]]:
+    """Boxes -> places (one box per place at most, one place left free) and the ``:init`` atoms.
+
+    With every place taken and the hand empty, a box can only be put back where it was, so
+    such starts are not drawn.
+    """
+    count = int(rng.integers(1, min(len(objects.boxes), len(objects.places) - 1) + 1))
+    boxes = [str(b) for b in rng.choice(objects.boxes, size=count, replace=False)]
+    places = [str(p) for p in rng.choice(objects.places, size=count, replace=False)]
+    where = dict(zip(sorted(boxes), places, strict=True))
+    init: set[Atom] = {(ARM_CLEAR,)}
+    init.update(_location_atom(box, place, objects) for box, place in where.items())
+    occupied = set(where.values())
+    init.update((SURFACE_CLEAR, s) for s in objects.surfaces if s not in occupied)
+    init.update((OPENABLE_CLEAR, o) for o in objects.openables if o not in occupied)
+    init.update((OPENED, o) for o in objects.openables if rng.random() < 0.5)
+    return where, frozenset(init)
+
+
+def _draw_goal(rng: np.random.Generator, where: dict[str, str], objects: KitchenObjects) -> frozenset[Atom]:
+    """Some of the boxes in places of their own, at least one of them not where it starts."""
+    boxes = sorted(where)
+    while True:
+        count = int(rng.integers(1, len(boxes) + 1))
+        chosen = sorted(str(b) for b in rng.choice(boxes, size=count, replace=False))
+        places = [str(p) for p in rng.choice(objects.places, size=count, replace=False)]
+        if any(where[box] != place for box, place in zip(chosen, places, strict=True)):
+            return frozenset(_location_atom(b, p, objects) for b, p in zip(chosen, places, strict=True))
+
+
+def _lays_out(objects: KitchenObjects, boxes: Sequence[str], init: frozenset[Atom]) -> bool:
+    typed = {name: objects.type_of(name) for name in (*objects.places, *boxes)}
+    try:
+        with build_kitchen(typed, init):
+            return True
+    except KitchenError:
+        return False
+
+
+def problem_text(
+    name: str, domain_name: str, objects: KitchenObjects, boxes: Sequence[str], init: frozenset[Atom],
+    goal: frozenset[Atom], comment: str,
+) -> str:
+    """The PDDL text of a problem over all places of the kitchen and the given boxes."""
+    groups = [(objects.surfaces, "surface"), (objects.openables, "openable"), (tuple(sorted(boxes)), "box")]
+    declared = "\n".join(f"    {' '.join(names)} - {type_name}" for names, type_name in groups if names)
+    facts = "\n".join(f"    {atom_text(a)}" for a in sorted(init))
+    wanted = "\n".join(f"    {atom_text(a)}" for a in sorted(goal))
+    return (
+        f"; {comment}\n(define (problem {name})\n  (:domain {domain_name})\n  (:objects\n{declared})\n"
+        f"  (:init\n{facts})\n  (:goal (and\n{wanted})))\n"
+    )
+
+
+def generate_problems(
+    count: int, problem_seed: int, folder: Path, domain: Path, kitchen_map: KitchenMap = KITCHEN_MAP
+) -> list[RandomProblem]:
+    """Write ``count`` problems (and the domain beside them) into ``folder``; what each turned out to be."""
+    objects = kitchen_objects(domain, kitchen_map)
+    domain_name = domain_model(domain).name
+    folder.mkdir(parents=True, exist_ok=True)
+    local_domain = folder / "domain.pddl"
+    if local_domain.resolve() != domain.resolve():
+        shutil.copyfile(domain, local_domain)
+    problems = []
+    for index in range(count):
+        rng = np.random.default_rng([problem_seed, index])
+        for attempts in range(1, MAX_LAYOUT_ATTEMPTS + 1):  # noqa: B007 (kept: how many it took)
+            where, init = _draw_start(rng, objects)
+            if _lays_out(objects, list(where), init):
+                break
+        else:
+            raise RandomProblemError(f"the kitchen laid out none of {MAX_LAYOUT_ATTEMPTS} random starts")
+        goal = _draw_goal(rng, where, objects)
+        name = f"{PROBLEM_PREFIX}{index:03d}"
+        comment = f"random kitchen problem {index} of --problem-seed {problem_seed} (kitchen_tamp.evaluate)"
+        text = problem_text(
+            f"kitchen-{name}-seed{problem_seed}", domain_name, objects, list(where), init, goal, comment
+        )
+        path = folder / f"{name}.pddl"
+        if path.exists() and path.read_text(encoding="utf-8") != text:
+            raise RandomProblemError(
+                f"{path} exists with other content (another --problem-seed?): rows of this folder "
+                "may refer to it, so it is not replaced; choose another --out"
+            )
+        write_atomically(path, text)
+        result = plan(load_task(path, local_domain), SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
+        length = len(result.plan) if result.plan is not None else None
+        problems.append(RandomProblem(name, path, attempts, result.solved, length))
+    return problems
+
+
+MANIFEST_FILE = "random_problems.csv"
+MANIFEST_COLUMNS = ("problem", "path", "layout_attempts", "symbolically_solvable", "plan_length")
+
+
+def write_manifest(folder: Path, problems: Sequence[RandomProblem]) -> Path:
+    """``random_problems.csv`` beside the problems: what the generator found out about each."""
+    lines = [",".join(MANIFEST_COLUMNS)]
+    lines += [
+        f"{p.name},{p.path},{p.layout_attempts},{str(p.solvable).lower()},"
+        f"{'' if p.plan_length is None else p.plan_length}"
+        for p in problems
+    ]
+    return write_atomically(folder / MANIFEST_FILE, "\n".join(lines) + "\n")
