@@ -9,6 +9,16 @@ model's distance queries (for trajectory optimisation) are timed too.
 
     .venv/bin/python benchmarks/collision.py
     .venv/bin/python benchmarks/collision.py --configurations 5000 --seed 1
+    .venv/bin/python benchmarks/collision.py --sphere-samples 100000   # sphere model vs PyBullet
+
+With ``--sphere-samples N`` it instead checks the sphere model
+(`kitchen_tamp.motion.sphere_checker`) against PyBullet, free-handed and
+carrying each box the problem has: N uniform configurations and N near-obstacle
+ones (bisected to within ~1 mm of PyBullet's contact between a free and a
+colliding sample). Missed collisions (PyBullet colliding, spheres free) must be
+zero; false positives (PyBullet free, spheres colliding) are reported as a
+fraction of PyBullet's free configurations. Distance queries of the sphere model
+(every pair with gradients) and Drake's (the minimum with its gradient) are timed.
 """
 
 from __future__ import annotations
@@ -23,7 +33,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen import KitchenScene, SkillFailure, load_kitchen_problem, sample_targets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
@@ -111,14 +121,81 @@ def format_row(t: Timing) -> str:
     )
 
 
+def near_obstacle(checker: PyBulletCollisionChecker, count: int, rng: np.random.Generator) -> FloatArray:
+    """``count`` configurations near PyBullet's contact: free/colliding pairs bisected 12 times."""
+    found_free, found_colliding = [], []
+    while sum(map(len, found_free)) < count or sum(map(len, found_colliding)) < count:
+        qs = rng.uniform(checker.lower, checker.upper, size=(4096, 7))
+        valid = checker.is_valid(qs)
+        found_free.append(qs[valid])
+        found_colliding.append(qs[~valid])
+    free, colliding = np.concatenate(found_free)[:count], np.concatenate(found_colliding)[:count]
+    for _ in range(12):
+        middle = (free + colliding) / 2.0
+        middle_valid = checker.is_valid(middle)[:, None]
+        free, colliding = np.where(middle_valid, middle, free), np.where(middle_valid, colliding, middle)
+    return np.concatenate([free[: count // 2], colliding[: count - count // 2]])
+
+
+def sphere_agreement(kitchen: KitchenScene, samples: int, seed: int) -> None:
+    from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+
+    rng = np.random.default_rng(seed)
+    scenes = {"free hand": kitchen.collision_checker()}
+    for box in sorted(kitchen.boxes):
+        for surface in kitchen.map.surfaces:  # the box stands on one of them
+            with kitchen.scene.preserved():
+                try:
+                    sample_targets(kitchen, "pickUp", (box, surface), rng).apply(kitchen)
+                except SkillFailure:
+                    continue
+                if kitchen.held_box() == box:
+                    scenes[f"carrying {box}"] = kitchen.collision_checker()
+                    break
+    print(f"sphere model vs PyBullet, {samples} uniform + {samples} near-obstacle configurations per scene")
+    header = f"{'scene':<18}{'sample':<9}{'pyb free':>9}{'missed':>8}{'false pos':>10}"
+    print(header + f"{'spheres/s':>12}{'pybullet/s':>12}")
+    for name, checker in scenes.items():
+        spheres = SphereCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
+        spheres.is_valid(np.zeros((1, 7)))
+        for label, qs in (
+            ("uniform", rng.uniform(checker.lower, checker.upper, size=(samples, 7))),
+            ("near", near_obstacle(checker, samples, rng)),
+        ):
+            sphere_us, sphere_valid = cpu_us_per_configuration(spheres.is_valid, qs, batch=True)
+            start = time.process_time()
+            pybullet_valid = checker.is_valid(qs)
+            pybullet_us = 1e6 * (time.process_time() - start) / len(qs)
+            missed = int(np.sum(sphere_valid & ~pybullet_valid))
+            false_positive = np.sum(~sphere_valid & pybullet_valid) / max(1, int(np.sum(pybullet_valid)))
+            print(
+                f"{name:<18}{label:<9}{pybullet_valid.mean():>9.3f}{missed:>8d}{false_positive:>10.3f}"
+                f"{1e6 / sphere_us:>12,.0f}{1e6 / pybullet_us:>12,.0f}"
+            )
+    free = scenes["free hand"]
+    spheres = SphereCollisionChecker(describe_collision_checker(free))
+    drake = drake_twin(kitchen, free)
+    qs = rng.uniform(free.lower, free.upper, size=(300, 7))
+    sphere_call = cpu_us_per_call(spheres.pair_distances, qs)
+    drake_call = cpu_us_per_call(drake.signed_distance, qs)
+    print(
+        f"distance with gradient, per configuration: spheres (all {len(spheres.pairs)} pairs) "
+        f"{sphere_call:.0f} us, Drake (closest pair) {drake_call:.0f} us"
+    )
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--configurations", type=int, default=2000)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--sphere-samples", type=int, default=0, metavar="N")
     args = parser.parse_args(argv)
 
     _, kitchen = load_kitchen_problem(PROBLEM)
     with kitchen:
+        if args.sphere_samples:
+            sphere_agreement(kitchen, args.sphere_samples, args.seed)
+            return 0
         free = kitchen.collision_checker()
         with kitchen.scene.preserved():
             sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(args.seed)).apply(

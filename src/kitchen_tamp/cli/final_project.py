@@ -26,6 +26,7 @@ from kitchen_tamp.execute import (
     Timeline,
     TrajectoryFileError,
     build_timeline,
+    judge_under_physics,
     plot_joints,
     read_trajectory,
     render_replay,
@@ -34,6 +35,7 @@ from kitchen_tamp.execute import (
     write_trajectory,
 )
 from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, write_timeline_replay
+from kitchen_tamp.execute.physics_replanning import Replanner
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
@@ -44,6 +46,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
     SesameBudgets,
     SesameRefinement,
     refine_with_sesame,
+    sesame_replanner,
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
@@ -87,6 +90,7 @@ def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
                         help="serve a live 3D viewer (Meshcat) on this machine while the program runs")
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
     parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
+    parser.add_argument("--no-physics", action="store_true", help="skip execution under physics")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -142,11 +146,18 @@ def _check_display(args: argparse.Namespace) -> None:
 
 def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
-        if args.collision_model != "drake":
-            raise UsageError("optimizes needs signed distances: use --collision-model drake (the default)")
+        if args.collision_model == "pybullet":
+            raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
         nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
         return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
     return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
+
+
+def _physics_replanner(run: SavedRun) -> Replanner:
+    """SeSamE with the run's motion back end (its defaults), for re-plans under physics."""
+    if run.mode == "optimizes":
+        return sesame_replanner(OptimizingMotionBackend(DEFAULT_SETTINGS), run.seed)
+    return sesame_replanner(SamplingMotionBackend(), run.seed)
 
 
 def _progress(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
@@ -221,6 +232,8 @@ def verify_and_render(
     if not verification.verified:
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
     report.timing["verification_s"] = time.perf_counter() - clock
+    if not args.no_physics:
+        judge_under_physics(task, trajectory, report, replan=_physics_replanner(run))
     clock = time.perf_counter()
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
     show_velocities = run.mode == "optimizes"
@@ -249,10 +262,11 @@ def _finish(report: RunReport, out_dir: Path, report_name: str = REPORT_FILE) ->
         goals = ", ".join(verification.get("goal_atoms", {}))  # type: ignore[arg-type]
         clearance = float(verification.get("min_clearance_m", 0.0))  # type: ignore[arg-type]
         _say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free "
-             f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; report {path}")
+             f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; {report.verdicts()}; "
+             f"report {path}")
         return int(ExitCode.SOLVED)
     failure = report.failure or {}
-    _say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; report {path}")
+    _say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; {report.verdicts()}; report {path}")
     return int(ExitCode.NO_PLAN)
 
 

@@ -1,7 +1,13 @@
-"""Replaying a refined plan headless, verifying it independently of the planner, and
+"""Replaying a refined plan headless, verifying it independently of the planner, executing
+it under physics, and
 writing what a run leaves behind: report.json, trajectory.json, replay.gif, joints.png."""
 
 from kitchen_tamp.execute.joint_plot import plot_joints
+from kitchen_tamp.execute.physics_execution import (
+    PhysicsExecution,
+    execute_under_physics,
+    judge_under_physics,
+)
 from kitchen_tamp.execute.replay_video import FRAME_SECONDS, render_replay, write_gif
 from kitchen_tamp.execute.run_report import REPORT_FILE, RunReport
 from kitchen_tamp.execute.timeline import Timeline, build_timeline
@@ -18,12 +24,15 @@ __all__ = [
     "FRAME_SECONDS",
     "REPORT_FILE",
     "TRAJECTORY_FILE",
+    "PhysicsExecution",
     "RunReport",
     "SavedRun",
     "Timeline",
     "TrajectoryFileError",
     "Verification",
     "build_timeline",
+    "execute_under_physics",
+    "judge_under_physics",
     "plot_joints",
     "read_trajectory",
     "render_replay",

@@ -32,6 +32,8 @@ class RunReport:
     failure: dict[str, object] | None = None
     verification: dict[str, object] | None = None
     bilevel: dict[str, object] | None = None
+    physics: dict[str, object] | None = None
+    """The ``physics`` section (execution under physics), None when it was skipped."""
     outputs: dict[str, str | None] = field(default_factory=dict)
     timing: dict[str, object] = field(default_factory=dict)
     started: float | None = None
@@ -39,8 +41,34 @@ class RunReport:
 
     @property
     def solved(self) -> bool:
-        """Refined and verified."""
-        return self.failure is None and self.verification is not None and bool(self.verification["verified"])
+        """Refined and verified (under physics too, unless physics was skipped)."""
+        physics_ok = self.physics is None or bool(self.physics["verified"])
+        return (
+            self.failure is None
+            and self.verification is not None
+            and bool(self.verification["verified"])
+            and physics_ok
+        )
+
+    def verdicts(self) -> str:
+        """Both judges' verdicts in words, e.g. ``kinematic judge: verified, physics: FAILED``."""
+        if self.verification is None:
+            kinematic = "not run"
+        else:
+            kinematic = "verified" if self.verification["verified"] else "FAILED"
+        if self.physics is None:
+            physics = "skipped" if self.verification is not None else "not run"
+        else:
+            physics = "verified" if self.physics["verified"] else "FAILED"
+            replans = self.physics.get("replans") or []
+            if isinstance(replans, list) and replans:
+                physics += f" after {len(replans)} re-plan{'s' if len(replans) > 1 else ''}"
+            errors = self.physics.get("final_box_errors") or {}
+            if isinstance(errors, dict) and errors:
+                position = max(float(e["position_error_m"]) for e in errors.values())
+                tilt = max(float(e["tilt_deg"]) for e in errors.values())
+                physics += f" (boxes within {position * 1000:.1f} mm and {tilt:.1f} deg of the plan)"
+        return f"kinematic judge: {kinematic}, physics: {physics}"
 
     def fail(self, stage: str, reason: str, step: int | None = None, action: str | None = None) -> None:
         """Record why the run did not solve the problem (the first failure wins)."""
@@ -63,6 +91,7 @@ class RunReport:
             "steps": self.steps,
             "bilevel": self.bilevel,
             "verification": self.verification,
+            "physics": self.physics,
             "outputs": self.outputs,
             "timing": {k: round(v, 4) if isinstance(v, float) else v for k, v in self.timing.items()},
         }

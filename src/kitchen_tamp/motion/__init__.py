@@ -7,6 +7,10 @@ smoothing (`shortcut_path`) is its own step; `check_path_densely` re-checks
 any path. Trajectory optimisation with Drake is imported on demand from
 `trajectory_program` (build) and `trajectory_solver` (solve, reconstruct,
 `optimize_trajectory`), so sampling-based planning does not load Drake.
+Planning-time geometry models of a described scene: Drake's
+(`drake_collision`) and the sphere model (`sphere_checker`, batched checks and
+per-pair signed distances; `sphere_screening` puts it in front of an exact
+model), imported on demand too.
 """
 
 from kitchen_tamp.motion.collision_checker import (

@@ -177,3 +177,19 @@ def refine_with_sesame(
 
 def _renumbered(record: ActionSampleRecord, index: int) -> ActionSampleRecord:
     return replace(record, index=index)
+
+
+def sesame_replanner(
+    backend: MotionBackend,
+    seed: int,
+    budgets: SesameBudgets = KITCHEN_BUDGETS,
+    collision_model: str = DEFAULT_COLLISION_MODEL,
+) -> Callable[[KitchenScene, Task], KitchenTrajectory | None]:
+    """``replan(kitchen, task)`` for execution under physics: SeSamE from the scene as it is
+    to the task's goal (its initial state being the scene's), or None if it finds no plan."""
+
+    def replan(kitchen: KitchenScene, task: Task) -> KitchenTrajectory | None:
+        refined = refine_with_sesame(kitchen, task, backend, seed, budgets, collision_model).refined
+        return None if refined is None else refined.trajectory
+
+    return replan

@@ -1,9 +1,14 @@
-"""The collision model free-space moves are planned with: Drake's (faster) or PyBullet's.
+"""The collision model free-space moves are planned with: spheres (fastest), Drake's or PyBullet's.
 
-Both check the scene a skill's free-space checker captured (what the hand
+All check the scene a skill's free-space checker captured (what the hand
 carries, where the drawer is) and keep ``margin`` metres of clearance. PyBullet
 stays the simulator and the verifier whichever is chosen: every planned path is
 re-checked with the skill's own PyBullet checker before it is accepted.
+
+``spheres`` is the conservative sphere model (`kitchen_tamp.motion.sphere_checker`)
+in front of Drake's (`kitchen_tamp.motion.sphere_screening`): what the spheres
+find free is free (they cover the links), what they reject Drake decides, so
+verdicts are Drake's and most configurations never reach Drake.
 """
 
 from __future__ import annotations
@@ -17,20 +22,30 @@ from kitchen_tamp.world.scene_description import describe_collision_checker
 
 COLLISION_MODELS = MappingProxyType(
     {
+        "spheres": "the sphere model's batched checks; Drake decides what they reject and measures distances",
         "drake": "Drake SceneGraph distance queries on the same URDFs (about 2x faster per check)",
         "pybullet": "PyBullet closest-point queries, as the verifier uses",
     }
 )
 """Name -> description of the collision models planning can use."""
-DEFAULT_COLLISION_MODEL = "drake"
+DEFAULT_COLLISION_MODEL = "spheres"
 
 
 def planning_checker(
     kitchen: KitchenScene, targets: SkillTargets, margin: float, model: str = DEFAULT_COLLISION_MODEL
 ) -> BoundedCollisionChecker:
     """A checker of the scene ``targets.free_space_checker`` captured, keeping ``margin``."""
-    if model == "drake":
-        return DrakeCollisionChecker(describe_collision_checker(targets.free_space_checker), margin=margin)
+    if model in ("drake", "spheres"):
+        description = describe_collision_checker(targets.free_space_checker)
+        drake = DrakeCollisionChecker(description, margin=margin)
+        if model == "drake":
+            return drake
+        # imported here: numba loads only when the sphere model is used
+        from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+        from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+
+        spheres = SphereCollisionChecker(description, margin=margin)
+        return SphereScreenedChecker(spheres, drake)
     if model == "pybullet":
         with kitchen.scene.preserved():
             kitchen.robot.set_gripper_width(targets.gripper_width)

@@ -4,7 +4,9 @@ A ``Scene`` owns one physics client and its bodies (looked up by name); a
 ``Robot`` gives an arm's configuration, gripper and forward kinematics;
 ``InverseKinematics`` solves for tool poses with seeded restarts; a
 ``PyBulletCollisionChecker`` answers batch validity queries for motion planners;
-``render`` takes headless pictures; ``visual_shapes`` says what a body looks like.
+``render`` takes headless pictures; ``visual_shapes`` says what a body looks like;
+``physics.PhysicsWorld`` steps a scene with gravity, joint motors and friction for
+execution under physics.
 """
 
 from kitchen_tamp.world.attachment import Attachment

@@ -1,0 +1,142 @@
+"""The sphere model as a collision checker: batched validity, segments, signed distances.
+
+`SphereCollisionChecker` is a `CollisionChecker` with joint limits (what the
+kitchen's motion back ends take) built from a scene description. A batch of
+configurations is checked by one compiled call (`sphere_kernels`); segments are
+checked coarse to fine in growing batches, stopping at the first colliding
+batch (`CountingSegmentChecker`). ``min_distance`` and ``signed_distance`` have
+the Drake checker's meaning (minimum over checked pairs, capped at the
+horizon); ``pair_distances`` gives every pair with its gradient
+(`sphere_distances`).
+
+The model is conservative: the spheres cover the links' collision hulls (and
+PyBullet's margin around them), obstacles are boxes, so what PyBullet finds
+colliding the model finds colliding; the reverse may not hold near contact.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations, ValidityMask
+from kitchen_tamp.motion.drake_collision import DEFAULT_DISTANCE_HORIZON, DescribedScene
+from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
+from kitchen_tamp.motion.sphere_covering import DEFAULT_COVERING_TOLERANCE
+from kitchen_tamp.motion.sphere_distances import SpherePairs, pair_distances, pair_distances_and_gradients
+from kitchen_tamp.motion.sphere_kernels import valid_configurations
+from kitchen_tamp.motion.sphere_scene import PYBULLET_MESH_MARGIN, SphereScene
+
+FloatArray = npt.NDArray[np.float64]
+
+_VALID_CONFIGURATIONS: Any = valid_configurations
+"""The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
+
+
+class SphereCollisionChecker:
+    """Batch validity and signed distances of arm configurations against a sphere model.
+
+    Valid: within the arm's limits and no checked pair closer than ``margin`` (m).
+    """
+
+    def __init__(
+        self,
+        scene: DescribedScene,
+        margin: float = 0.0,
+        distance_horizon: float = DEFAULT_DISTANCE_HORIZON,
+        segment_resolution: float = 0.01,
+        tolerance: float = DEFAULT_COVERING_TOLERANCE,
+        mesh_padding: float = PYBULLET_MESH_MARGIN,
+    ) -> None:
+        self.margin = float(margin)
+        self.distance_horizon = float(distance_horizon)
+        self.model = SphereScene(scene, tolerance, mesh_padding)
+        self.lower: FloatArray = self.model.arm_lower
+        self.upper: FloatArray = self.model.arm_upper
+        self.pairs = SpherePairs.of(self.model)
+        self.segment_resolution = float(segment_resolution)
+        self._segments = CountingSegmentChecker(self, segment_resolution)
+        self._kernel_arguments = self._arrays()
+
+    def _arrays(self) -> tuple[Any, ...]:
+        model, layout = self.model, self.model.tree.flat_layout()
+        centers, radii = [], []
+        for group in model.groups:
+            local = model.sphere_centers[group.spheres]
+            center = (local.min(axis=0) + local.max(axis=0)) / 2.0
+            centers.append(center)
+            radii.append(
+                float(np.max(np.linalg.norm(local - center, axis=1) + model.sphere_radii[group.spheres]))
+            )
+        boxes_center = model.boxes.centers
+        boxes_reach = np.einsum("bij,bj->bi", np.abs(model.boxes.rotations), model.boxes.half_extents)
+        return (
+            self.lower,
+            self.upper,
+            layout.root,
+            layout.parents,
+            layout.origins @ layout.held,
+            layout.kinds,
+            layout.axes,
+            layout.variables,
+            model.sphere_links.astype(np.int64),
+            model.sphere_centers,
+            model.sphere_radii,
+            np.array([g.robot_link for g in model.groups], dtype=np.int64),
+            np.array([g.spheres.start for g in model.groups], dtype=np.int64),
+            np.array([g.spheres.stop for g in model.groups], dtype=np.int64),
+            np.array(centers).reshape(-1, 3),
+            np.array(radii),
+            np.ascontiguousarray(model.boxes.rotations),
+            np.ascontiguousarray(model.boxes.centers),
+            np.ascontiguousarray(model.boxes.half_extents),
+            boxes_center - boxes_reach,
+            boxes_center + boxes_reach,
+            self._likely_first(model.group_box_pairs).astype(np.int64),
+            model.group_pairs.astype(np.int64),
+        )
+
+    def _likely_first(self, group_box_pairs: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
+        """(group, box) pairs ordered so that a collision tends to be met early: the hand's end of
+        the arm and carried bodies first (they sweep the most), then the largest boxes."""
+        volume = np.prod(self.model.boxes.half_extents, axis=1)
+        links = np.array([g.robot_link for g in self.model.groups])
+        order = np.lexsort((-volume[group_box_pairs[:, 1]], -links[group_box_pairs[:, 0]]))
+        return group_box_pairs[order]
+
+    def is_valid(self, qs: JointConfigurations) -> ValidityMask:
+        """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""
+        batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
+        return np.asarray(_VALID_CONFIGURATIONS(batch, *self._kernel_arguments, self.margin), dtype=np.bool_)
+
+    def is_valid_uncompiled(self, qs: JointConfigurations) -> ValidityMask:
+        """The same verdicts as ``is_valid`` from every pair's distance in numpy (a reference)."""
+        batch = np.atleast_2d(np.asarray(qs, dtype=float))
+        within = np.all((batch >= self.lower - 1e-9) & (batch <= self.upper + 1e-9), axis=1)
+        if len(self.pairs) == 0:
+            return np.asarray(within, dtype=np.bool_)
+        clear = np.all(pair_distances(self.model, self.pairs, batch) >= self.margin, axis=1)
+        return np.asarray(within & clear, dtype=np.bool_)
+
+    def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
+        """Whether the straight segment is valid, checked at the checker's resolution."""
+        return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
+
+    def pair_distances(self, q: JointConfiguration) -> tuple[FloatArray, FloatArray]:
+        """Every checked pair's signed distance (pairs,) and gradient (pairs, 7) at ``q``."""
+        return pair_distances_and_gradients(self.model, self.pairs, np.asarray(q, dtype=float))
+
+    def min_distance(self, q: JointConfiguration) -> float:
+        """Smallest signed distance (m) over the checked pairs, capped at ``distance_horizon``."""
+        distances = pair_distances(self.model, self.pairs, np.asarray(q, dtype=float)[None])[0]
+        return float(min(np.min(distances, initial=self.distance_horizon), self.distance_horizon))
+
+    def signed_distance(self, q: JointConfiguration) -> tuple[float, JointConfiguration]:
+        """(``min_distance(q)``, its gradient); zero gradient beyond the horizon."""
+        distances, gradients = self.pair_distances(q)
+        if len(distances) == 0 or np.min(distances) >= self.distance_horizon:
+            return self.distance_horizon, np.zeros(len(self.lower))
+        closest = int(np.argmin(distances))
+        return float(distances[closest]), gradients[closest]

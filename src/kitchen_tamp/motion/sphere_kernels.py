@@ -1,0 +1,210 @@
+"""The compiled validity kernel of the sphere model: per configuration, forward kinematics, then
+group bounds before spheres, stopping at the first pair closer than the margin.
+
+Compiled by numba on first use and cached on disk (``cache=True``: beside this
+file, or where ``NUMBA_CACHE_DIR`` points), so a cold start loads it instead
+of compiling again. Arrays only; `sphere_checker` prepares them from a
+`SphereScene`.
+
+Layout: links in parent-before-child order with ``parents`` (-1 for the root),
+``origins`` (L, 4, 4) joint origins, ``kinds`` (0 fixed or held, 1 revolute, 2
+prismatic variable), ``axes`` (L, 3) unit joint axes and ``variables`` (L) column
+of the configuration (or -1); a held joint's motion is folded into its origin.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+
+FIXED, REVOLUTE, PRISMATIC = 0, 1, 2
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _compose(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
+    """out = a @ b for rigid 4x4 transforms (numba's @ needs BLAS from scipy)."""
+    for i in range(3):
+        for j in range(4):
+            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
+        out[i, 3] += a[i, 3]
+    out[3, 0] = out[3, 1] = out[3, 2] = 0.0
+    out[3, 3] = 1.0
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _link_poses(
+    q: FloatArray,
+    root: FloatArray,
+    parents: npt.NDArray[np.int64],
+    origins: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    axes: FloatArray,
+    variables: npt.NDArray[np.int64],
+    poses: FloatArray,
+    motion: FloatArray,
+    frame: FloatArray,
+) -> None:
+    for link in range(parents.shape[0]):
+        if parents[link] < 0:
+            poses[link] = root
+            continue
+        kind = kinds[link]
+        if kind == FIXED:
+            _compose(poses[parents[link]], origins[link], poses[link])
+            continue
+        _compose(poses[parents[link]], origins[link], frame)
+        angle = q[variables[link]]
+        x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
+        motion[:] = 0.0
+        motion[3, 3] = 1.0
+        if kind == REVOLUTE:
+            c, s = np.cos(angle), np.sin(angle)
+            t = 1.0 - c
+            motion[0, 0], motion[0, 1], motion[0, 2] = t * x * x + c, t * x * y - s * z, t * x * z + s * y
+            motion[1, 0], motion[1, 1], motion[1, 2] = t * x * y + s * z, t * y * y + c, t * y * z - s * x
+            motion[2, 0], motion[2, 1], motion[2, 2] = t * x * z - s * y, t * y * z + s * x, t * z * z + c
+        else:
+            motion[0, 0] = motion[1, 1] = motion[2, 2] = 1.0
+            motion[0, 3], motion[1, 3], motion[2, 3] = angle * x, angle * y, angle * z
+        _compose(frame, motion, poses[link])
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _box_gap(point: FloatArray, rotation: FloatArray, center: FloatArray, half: FloatArray) -> float:
+    """Signed distance from a point to an oriented box (negative inside)."""
+    outside = 0.0
+    deepest = -1e300
+    for axis in range(3):
+        local = 0.0
+        for k in range(3):
+            local += rotation[k, axis] * (point[k] - center[k])
+        excess = abs(local) - half[axis]
+        if excess > 0.0:
+            outside += excess * excess
+        if excess > deepest:
+            deepest = excess
+    if outside > 0.0:
+        return float(np.sqrt(outside))
+    return float(deepest)
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _aabb_gap(point: FloatArray, low: FloatArray, high: FloatArray) -> float:
+    """Distance from a point to an axis-aligned box (zero inside): a lower bound of the gap to any
+    shape inside the box."""
+    total = 0.0
+    for k in range(3):
+        excess = max(low[k] - point[k], point[k] - high[k], 0.0)
+        total += excess * excess
+    return float(np.sqrt(total))
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _distance(a: FloatArray, b: FloatArray) -> float:
+    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
+    return float(np.sqrt(dx * dx + dy * dy + dz * dz))
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
+    for k in range(3):
+        out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
+
+
+@numba.njit(cache=True, fastmath=True)
+def valid_configurations(
+    qs: FloatArray,
+    lower: FloatArray,
+    upper: FloatArray,
+    root: FloatArray,
+    parents: npt.NDArray[np.int64],
+    origins: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    axes: FloatArray,
+    variables: npt.NDArray[np.int64],
+    sphere_links: npt.NDArray[np.int64],
+    sphere_centers: FloatArray,
+    sphere_radii: FloatArray,
+    group_links: npt.NDArray[np.int64],
+    group_starts: npt.NDArray[np.int64],
+    group_stops: npt.NDArray[np.int64],
+    group_centers: FloatArray,
+    group_radii: FloatArray,
+    box_rotations: FloatArray,
+    box_centers: FloatArray,
+    box_halves: FloatArray,
+    box_lows: FloatArray,
+    box_highs: FloatArray,
+    group_box_pairs: npt.NDArray[np.int64],
+    group_pairs: npt.NDArray[np.int64],
+    margin: float,
+) -> npt.NDArray[np.bool_]:
+    """Per row of ``qs``: within limits and no checked sphere pair closer than ``margin``."""
+    count = qs.shape[0]
+    valid = np.ones(count, dtype=np.bool_)
+    poses = np.empty((parents.shape[0], 4, 4))
+    motion, frame = np.empty((4, 4)), np.empty((4, 4))
+    world = np.empty((sphere_radii.shape[0], 3))
+    placed = np.zeros(sphere_radii.shape[0], dtype=np.bool_)
+    group_world = np.empty((group_radii.shape[0], 3))
+    tolerance = 1e-9
+    for m in range(count):
+        for j in range(qs.shape[1]):
+            if qs[m, j] < lower[j] - tolerance or qs[m, j] > upper[j] + tolerance:
+                valid[m] = False
+        if not valid[m]:
+            continue
+        _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
+        placed[:] = False
+        for g in range(group_radii.shape[0]):
+            _world_point(poses[group_links[g]], group_centers[g], group_world[g])
+        for k in range(group_box_pairs.shape[0]):
+            g, b = group_box_pairs[k, 0], group_box_pairs[k, 1]
+            if _aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= margin:
+                continue
+            if (
+                _box_gap(group_world[g], box_rotations[b], box_centers[b], box_halves[b]) - group_radii[g]
+                >= margin
+            ):
+                continue
+            for s in range(group_starts[g], group_stops[g]):
+                if not placed[s]:
+                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
+                    placed[s] = True
+                if (
+                    _box_gap(world[s], box_rotations[b], box_centers[b], box_halves[b]) - sphere_radii[s]
+                    < margin
+                ):
+                    valid[m] = False
+                    break
+            if not valid[m]:
+                break
+        if not valid[m]:
+            continue
+        for k in range(group_pairs.shape[0]):
+            g, h = group_pairs[k, 0], group_pairs[k, 1]
+            gap = _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h]
+            if gap >= margin:
+                continue
+            for s in range(group_starts[g], group_stops[g]):
+                if not placed[s]:
+                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
+                    placed[s] = True
+                if _distance(world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
+                    continue
+                for t in range(group_starts[h], group_stops[h]):
+                    if not placed[t]:
+                        _world_point(poses[sphere_links[t]], sphere_centers[t], world[t])
+                        placed[t] = True
+                    gap = _distance(world[s], world[t]) - sphere_radii[s] - sphere_radii[t]
+                    if gap < margin:
+                        valid[m] = False
+                        break
+                if not valid[m]:
+                    break
+            if not valid[m]:
+                break
+    return valid

@@ -1,0 +1,253 @@
+"""Dynamics for a loaded scene: gravity, 240 Hz stepping, joint motors, friction.
+
+``PhysicsWorld`` turns a kinematic ``Scene`` (bodies placed, nothing stepped)
+into a simulated one. Friction and contact parameters are set here, where the
+models are loaded for physics, rather than written into the URDFs: the arm's
+joints are position-controlled with the efforts and velocities its URDF
+states, the fingers press with a bounded force, and passive joints (a drawer's
+slide) get a velocity motor with target 0 whose force bound acts as dry
+joint friction. Nothing is welded: a body held by the fingers is held by
+friction alone.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pybullet as p
+
+from kitchen_tamp.world.bodies import Body
+from kitchen_tamp.world.robot import Robot
+from kitchen_tamp.world.scene import Scene
+from kitchen_tamp.world.transforms import FloatArray
+
+
+@dataclass(frozen=True)
+class ContactMaterial:
+    """Friction of a body's links: Coulomb (lateral), torsional (spinning, metres), rolling."""
+
+    lateral: float
+    spinning: float = 0.0
+    rolling: float = 0.0
+
+    def __post_init__(self) -> None:
+        if self.lateral < 0.0 or self.spinning < 0.0 or self.rolling < 0.0:
+            raise ValueError(f"friction coefficients must be non-negative: {self}")
+
+
+@dataclass(frozen=True)
+class PhysicsSettings:
+    """How the world is simulated. Lengths in metres, forces in newtons, times in seconds."""
+
+    time_step: float = 1.0 / 240.0
+    gravity: float = 9.81
+    solver_iterations: int = 50
+    box_material: ContactMaterial = ContactMaterial(lateral=0.8, spinning=0.02)
+    """Boxes. The fingers keep the Panda URDF's friction (1.0, torsional 0.1)."""
+    fixture_material: ContactMaterial = ContactMaterial(lateral=0.6, spinning=0.01)
+    """Surfaces, drawer and handle."""
+    grip_force: float = 20.0
+    """Force bound (N) of each finger's motor: the grip force once the fingers are stopped by
+    what they hold (the Panda URDF's finger effort)."""
+    grip_squeeze: float = 0.01
+    """How much narrower (m) than the planned width the fingers are commanded to close, so
+    that they press with ``grip_force`` instead of resting on the object."""
+    finger_coupling_force: float = 50.0
+    """Force bound (N) of the gear that makes the fingers move together (0: no gear)."""
+    finger_contact_stiffness: float = 1e6
+    finger_contact_damping: float = 5e3
+    """The fingers' contact stiffness (N/m) and damping (N s/m). The Panda URDF's compliant
+    3e4 N/m and 1e3 N s/m let a held box creep round the closing axis, about a degree per
+    second under its own weight (6 degrees over one carry, 3 cm at the far end of the
+    baguette); this stiffness holds it within half a degree."""
+    contact_breaking_threshold: float = 0.001
+    """Distance (m) at which PyBullet forgets a contact point. Its default, 2 cm, keeps stale
+    points between the finger meshes and a box whose normals point the wrong way once the
+    fingers open: the box then sticks to a finger (releases fail, or a box is dragged away)."""
+    passive_joint_friction: float = 5.0
+    """Dry friction (N or N m) of joints nothing drives, e.g. a drawer's slide: without it
+    a drawer creeps shut when a box is put in it."""
+    position_gain: float = 0.3
+    velocity_gain: float = 1.0
+
+    def __post_init__(self) -> None:
+        if self.time_step <= 0.0 or self.grip_force <= 0.0 or self.grip_squeeze < 0.0:
+            raise ValueError(f"invalid physics settings: {self}")
+
+
+DEFAULT_PHYSICS = PhysicsSettings()
+
+
+class PhysicsWorld:
+    """Steps ``scene`` with gravity; drives ``robot``'s arm and fingers by motors.
+
+    ``fixtures`` are bodies with fixed bases (the kitchen); their movable joints
+    are passive. ``loose`` are free bodies (boxes). Call ``command_arm`` and
+    ``command_gripper`` to set motor targets, then ``step``.
+    """
+
+    def __init__(
+        self,
+        scene: Scene,
+        robot: Robot,
+        fixtures: Sequence[Body],
+        loose: Sequence[Body],
+        settings: PhysicsSettings = DEFAULT_PHYSICS,
+    ) -> None:
+        self.scene = scene
+        self.robot = robot
+        self.settings = settings
+        self.client = scene.client
+        self.time = 0.0
+        for body in loose:
+            scene.detach(body)
+        p.setGravity(0.0, 0.0, -settings.gravity, physicsClientId=self.client)
+        p.setPhysicsEngineParameter(
+            fixedTimeStep=settings.time_step,
+            numSolverIterations=settings.solver_iterations,
+            deterministicOverlappingPairs=1,
+            contactBreakingThreshold=settings.contact_breaking_threshold,
+            physicsClientId=self.client,
+        )
+        arm = robot.body
+        description = robot.description
+        self._arm_indices = list(arm.joint_indices(description.arm_joints))
+        self._finger_indices = list(arm.joint_indices(description.finger_joints))
+        limits = [self._joint_limits(arm, i) for i in self._arm_indices]
+        self.arm_efforts: FloatArray = np.array([effort for effort, _ in limits])
+        self.arm_velocity_limits: FloatArray = np.array([velocity for _, velocity in limits])
+        self.finger_velocity_limit = min(self._joint_limits(arm, i)[1] for i in self._finger_indices)
+        for body in fixtures:
+            self._set_material(body, body.link_indices, settings.fixture_material)
+            self._make_passive(body)
+        for body in loose:
+            self._set_material(body, body.link_indices, settings.box_material)
+        if settings.finger_coupling_force > 0.0:
+            self._couple_fingers()
+        for link in robot.finger_links:
+            p.changeDynamics(
+                arm.uid,
+                arm.link_index(link),
+                contactStiffness=settings.finger_contact_stiffness,
+                contactDamping=settings.finger_contact_damping,
+                physicsClientId=self.client,
+            )
+        self.command_arm(robot.configuration())
+        self.command_gripper(robot.gripper_width())
+
+    @staticmethod
+    def _joint_limits(body: Body, index: int) -> tuple[float, float]:
+        """(effort, velocity) limits of a joint as its URDF states them."""
+        info = p.getJointInfo(body.uid, index, physicsClientId=body.client)
+        return float(info[10]), float(info[11])
+
+    def _set_material(self, body: Body, links: Iterable[int], material: ContactMaterial) -> None:
+        for link in links:
+            p.changeDynamics(
+                body.uid,
+                link,
+                lateralFriction=material.lateral,
+                spinningFriction=material.spinning,
+                rollingFriction=material.rolling,
+                physicsClientId=self.client,
+            )
+
+    def _couple_fingers(self) -> None:
+        """Gear the fingers to open and close together, as the gripper's mechanism does: with two
+        independent finger motors both pressing at their force bound, the fingers and the box
+        between them slide freely along the closing axis whenever the hand accelerates."""
+        uid = self.robot.body.uid
+        first = self._finger_indices[0]
+        for other in self._finger_indices[1:]:
+            gear = p.createConstraint(
+                uid, first, uid, other, p.JOINT_GEAR, [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0],
+                physicsClientId=self.client,
+            )
+            p.changeConstraint(
+                gear, gearRatio=-1.0, erp=0.1, maxForce=self.settings.finger_coupling_force,
+                physicsClientId=self.client,
+            )
+
+    def _make_passive(self, body: Body) -> None:
+        """Movable joints of a fixture resist motion with dry friction and nothing else."""
+        for joint in body.joints:
+            if joint.movable:
+                p.setJointMotorControl2(
+                    body.uid,
+                    joint.index,
+                    p.VELOCITY_CONTROL,
+                    targetVelocity=0.0,
+                    force=self.settings.passive_joint_friction,
+                    physicsClientId=self.client,
+                )
+
+    # -- commands ---------------------------------------------------------------------------------
+    def command_arm(
+        self, q: FloatArray | Sequence[float], qd: FloatArray | Sequence[float] | None = None
+    ) -> None:
+        """Position targets (and feed-forward velocities) for the arm joints, bounded by the
+        URDF efforts."""
+        count = len(self._arm_indices)
+        p.setJointMotorControlArray(
+            self.robot.body.uid,
+            self._arm_indices,
+            p.POSITION_CONTROL,
+            targetPositions=[float(v) for v in q],
+            targetVelocities=[0.0] * count if qd is None else [float(v) for v in qd],
+            forces=self.arm_efforts.tolist(),
+            positionGains=[self.settings.position_gain] * count,
+            velocityGains=[self.settings.velocity_gain] * count,
+            physicsClientId=self.client,
+        )
+
+    def command_gripper(self, planned_width: float) -> None:
+        """Open fully when ``planned_width`` is the full opening; otherwise close to
+        ``grip_squeeze`` narrower than planned, pressing with at most ``grip_force``."""
+        full = self.robot.max_gripper_width
+        if planned_width >= full - 1e-4:
+            target = full
+        else:
+            target = max(0.0, planned_width - self.settings.grip_squeeze)
+        count = len(self._finger_indices)
+        p.setJointMotorControlArray(
+            self.robot.body.uid,
+            self._finger_indices,
+            p.POSITION_CONTROL,
+            targetPositions=[target / count] * count,
+            forces=[self.settings.grip_force] * count,
+            physicsClientId=self.client,
+        )
+
+    # -- stepping and reading ---------------------------------------------------------------------
+    def step(self, count: int = 1) -> None:
+        """Advance the simulation by ``count`` time steps."""
+        for _ in range(count):
+            p.stepSimulation(physicsClientId=self.client)
+        self.time += count * self.settings.time_step
+
+    def arm_state(self) -> tuple[FloatArray, FloatArray]:
+        """(positions, velocities) of the arm joints."""
+        states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
+        return np.array([s[0] for s in states]), np.array([s[1] for s in states])
+
+    def finger_speed(self) -> float:
+        """Fastest finger joint speed (m/s)."""
+        states = p.getJointStates(self.robot.body.uid, self._finger_indices, physicsClientId=self.client)
+        return float(max(abs(s[1]) for s in states))
+
+    def body_speed(self, body: Body) -> tuple[float, float]:
+        """(linear m/s, angular rad/s) speed of a free body's base."""
+        linear, angular = p.getBaseVelocity(body.uid, physicsClientId=self.client)
+        return float(np.linalg.norm(linear)), float(np.linalg.norm(angular))
+
+    def touching_links(self, body: Body, other: Body) -> frozenset[str]:
+        """Names of ``other``'s links in contact with ``body`` after the last step."""
+        contacts = p.getContactPoints(bodyA=body.uid, bodyB=other.uid, physicsClientId=self.client)
+        return frozenset(other.link_name(c[4]) for c in contacts)
+
+    def holds(self, body: Body) -> bool:
+        """Whether every finger of the robot touches ``body``."""
+        return self.robot.finger_links <= self.touching_links(body, self.robot.body)
+

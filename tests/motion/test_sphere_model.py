@@ -1,0 +1,198 @@
+"""The sphere model of the real kitchen: spheres cover the Panda's collision hulls, its batch
+kinematics is PyBullet's, it never calls free what PyBullet finds colliding, its gradients are the
+finite-difference ones, and it is built from what the simulator loaded (no drift)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pybullet as p
+import pytest
+
+from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, KITCHEN_URDF, ROBOT_BODY
+from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_covering import (
+    box_polytope,
+    cover_with_spheres,
+    covering_slack,
+    overshoot,
+    sample_polytope,
+)
+from kitchen_tamp.motion.sphere_scene import _covered_shape, shape_polytope
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+from kitchen_tamp.motion.sphere_urdf import read_urdf
+from kitchen_tamp.world import PyBulletCollisionChecker, panda_urdf_path
+from kitchen_tamp.world.scene_description import describe_collision_checker
+from tests.kitchen.conftest import REPO
+
+RANDOM_CONFIGURATIONS = 2000
+NEAR_CONFIGURATIONS = 300
+
+
+@dataclass(frozen=True, eq=False)
+class CheckerPair:
+    pybullet: PyBulletCollisionChecker
+    spheres: SphereCollisionChecker
+
+
+def sphere_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> SphereCollisionChecker:
+    paths: dict[str, Path | str] = {KITCHEN_BODY: KITCHEN_URDF, ROBOT_BODY: panda_urdf_path()}
+    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
+    return SphereCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)
+
+
+@pytest.fixture(scope="module")
+def kitchen() -> Iterator[KitchenScene]:
+    _, built = load_kitchen_problem(REPO / "pddl" / "problem.pddl")
+    with built:
+        yield built
+
+
+@pytest.fixture(scope="module")
+def free(kitchen: KitchenScene) -> CheckerPair:
+    checker = kitchen.collision_checker()
+    return CheckerPair(checker, sphere_twin(kitchen, checker))
+
+
+@pytest.fixture(scope="module")
+def holding(kitchen: KitchenScene) -> CheckerPair:
+    """The hand holds the spam box as the pick skill grasped it."""
+    with kitchen.scene.preserved():
+        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
+        assert kitchen.held_box() == "spam"
+        checker = kitchen.collision_checker()
+    return CheckerPair(checker, sphere_twin(kitchen, checker))
+
+
+def test_spheres_cover_every_panda_collision_hull() -> None:
+    model = read_urdf(panda_urdf_path())
+    rng = np.random.default_rng(0)
+    assert any(shape.kind == "mesh" for shape in model.collisions)
+    for index, shape in enumerate(model.collisions):
+        polytope = shape_polytope(shape)
+        points = sample_polytope(polytope, 1500, rng)
+        slack = covering_slack(_covered_shape(model.path, index, 0.012), points)
+        assert slack >= -1e-9, (shape.link, slack)
+
+
+def test_generated_spheres_cover_and_stay_close() -> None:
+    """Fresh from the generator (not the disk cache): a finger mesh and a box are covered, and no
+    sphere reaches more than a few centimetres outside."""
+    model = read_urdf(panda_urdf_path())
+    finger = next(shape for shape in model.collisions if shape.link == "panda_leftfinger")
+    rng = np.random.default_rng(1)
+    for polytope in (shape_polytope(finger), box_polytope(np.array([0.1, 0.05, 0.085]))):
+        spheres = cover_with_spheres(polytope, 0.012)
+        assert covering_slack(spheres, sample_polytope(polytope, 1500, rng)) >= -1e-9
+        planes = polytope.planes()
+        reaches = [overshoot(c, r, planes) for c, r in zip(spheres.centers, spheres.radii, strict=True)]
+        assert max(reaches) < 0.03
+
+
+def test_batch_kinematics_is_pybullets(kitchen: KitchenScene, free: CheckerPair) -> None:
+    tree, body = free.spheres.model.tree, kitchen.robot.body
+    qs = np.random.default_rng(1).uniform(free.spheres.lower, free.spheres.upper, size=(12, 7))
+    poses = tree.link_poses(qs)
+    with kitchen.scene.preserved():
+        for q, pose in zip(qs, poses, strict=True):
+            kitchen.robot.set_configuration(q)
+            for link in ("panda_link3", "panda_link7", "panda_hand", "panda_leftfinger", "panda_rightfinger"):
+                expected = body.link_pose(link).matrix()
+                np.testing.assert_allclose(pose[tree.link_index[link]], expected, atol=1e-6)
+
+
+def near_contact(pair: CheckerPair, count: int, rng: np.random.Generator) -> np.ndarray:
+    """Configurations within a few millimetres of PyBullet's contact: bisected between a free and a
+    colliding sample."""
+    lower, upper = pair.pybullet.lower, pair.pybullet.upper
+    qs = rng.uniform(lower, upper, size=(4 * count, 7))
+    valid = pair.pybullet.is_valid(qs)
+    free, colliding = qs[valid][:count], qs[~valid][:count]
+    count = min(len(free), len(colliding))
+    free, colliding = free[:count], colliding[:count]
+    for _ in range(12):
+        middle = (free + colliding) / 2.0
+        middle_valid = pair.pybullet.is_valid(middle)
+        free = np.where(middle_valid[:, None], middle, free)
+        colliding = np.where(middle_valid[:, None], colliding, middle)
+    return np.concatenate([free, colliding])
+
+
+@pytest.mark.parametrize("scene", ["free", "holding"])
+def test_never_calls_free_what_pybullet_finds_colliding(request: pytest.FixtureRequest, scene: str) -> None:
+    pair: CheckerPair = request.getfixturevalue(scene)
+    rng = np.random.default_rng(2)
+    random = rng.uniform(pair.pybullet.lower, pair.pybullet.upper, size=(RANDOM_CONFIGURATIONS, 7))
+    for qs in (random, near_contact(pair, NEAR_CONFIGURATIONS, rng)):
+        pybullet, spheres = pair.pybullet.is_valid(qs), pair.spheres.is_valid(qs)
+        assert 0.05 < pybullet.mean() < 0.95
+        missed = np.flatnonzero(spheres & ~pybullet)
+        assert len(missed) == 0, pair.pybullet.min_clearance(qs[missed])
+    pybullet, spheres = pair.pybullet.is_valid(random), pair.spheres.is_valid(random)
+    assert spheres.mean() > 0.5 * pybullet.mean()  # the model is not just "everything collides"
+
+
+def test_compiled_kernel_agrees_with_numpy(free: CheckerPair, holding: CheckerPair) -> None:
+    rng = np.random.default_rng(3)
+    for pair in (free, holding):
+        qs = rng.uniform(pair.spheres.lower - 0.05, pair.spheres.upper + 0.05, size=(300, 7))
+        assert pair.spheres.is_valid(qs).tolist() == pair.spheres.is_valid_uncompiled(qs).tolist()
+
+
+def test_pair_gradients_are_the_finite_differences(free: CheckerPair, holding: CheckerPair) -> None:
+    rng = np.random.default_rng(4)
+    step = 1e-6
+    for pair in (free, holding):
+        for q in rng.uniform(pair.spheres.lower, pair.spheres.upper, size=(5, 7)):
+            distances, gradients = pair.spheres.pair_distances(q)
+            numeric = np.empty_like(gradients)
+            for joint in range(7):
+                offset = np.zeros(7)
+                offset[joint] = step
+                numeric[:, joint] = (
+                    pair.spheres.pair_distances(q + offset)[0] - pair.spheres.pair_distances(q - offset)[0]
+                ) / (2 * step)
+            # pairs at a kink (a box edge, a sphere centre on a box's medial plane) move off it
+            smooth = np.all(np.abs(numeric - gradients) < 1e-4, axis=1)
+            assert smooth.mean() > 0.99
+            assert np.all(np.abs(distances[:3]) < 10.0)
+            signed, _ = pair.spheres.signed_distance(q)
+            assert signed == pytest.approx(min(float(distances.min()), pair.spheres.distance_horizon))
+
+
+def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) -> None:
+    """Drift: every obstacle box sits where PyBullet has that link's collision shapes, the drawer's
+    boxes follow its joint, and the robot stands where PyBullet's does."""
+    with kitchen.scene.preserved():
+        for opening in (0.0, 0.2):
+            kitchen.scene.set_joint_positions(kitchen.kitchen, ["drawer_joint"], [opening])
+            spheres = sphere_twin(kitchen, kitchen.collision_checker()).model
+            boxes = spheres.boxes
+            corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+            for body_name, link in set(boxes.owners):
+                owned = [i for i, owner in enumerate(boxes.owners) if owner == (body_name, link)]
+                points = np.concatenate(
+                    [
+                        (corners * boxes.half_extents[i]) @ boxes.rotations[i].T + boxes.centers[i]
+                        for i in owned
+                    ]
+                )
+                body = kitchen.scene.body(body_name)
+                low, high = p.getAABB(body.uid, body.link_index(link), physicsClientId=body.client)
+                np.testing.assert_allclose(points.min(axis=0), low, atol=2e-3, err_msg=f"{body_name}/{link}")
+                np.testing.assert_allclose(points.max(axis=0), high, atol=2e-3, err_msg=f"{body_name}/{link}")
+            pose = spheres.tree.link_poses(kitchen.robot.configuration()[None])[0]
+            np.testing.assert_allclose(pose[0], kitchen.robot.body.base_pose().matrix(), atol=1e-9)
+
+
+def test_screened_checker_gives_drakes_verdicts(free: CheckerPair, kitchen: KitchenScene) -> None:
+    description = describe_collision_checker(free.pybullet)
+    drake = DrakeCollisionChecker(description)
+    screened = SphereScreenedChecker(free.spheres, drake)
+    qs = np.random.default_rng(5).uniform(drake.lower, drake.upper, size=(200, 7))
+    assert screened.is_valid(qs).tolist() == drake.is_valid(qs).tolist()
