@@ -2,7 +2,8 @@
 
 First, what a user pays: each planner run as a fresh process per problem and
 search (``symbolic_process``: wall time, alternating, medians), on the kitchen,
-generated problems and real IPC problems (``benchmarks/ipc/``). Then the
+generated problems and real IPC problems (``benchmarks/ipc/``); ours twice, on
+new files (task cache emptied) and repeated (served from the task cache). Then the
 in-process comparison below, which leaves out process start-up and imports.
 
 For each problem and each search, our whole run (parse + translate + ground +

@@ -62,6 +62,7 @@ def test_hard_problem_is_solved_verified_and_leaves_every_file(hard_run: Path) -
     assert not np.array_equal(frames[0], frames[-1])  # the scene changed
     assert (hard_run / "joints.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert report["outputs"]["html"] == "replay.html" and (hard_run / "replay.html").stat().st_size > 1e6
+    assert report["outputs"]["html_shows"] == "physics"  # the motion the simulator executed
 
 
 def test_replay_reproduces_the_verification(hard_run: Path, tmp_path: Path) -> None:

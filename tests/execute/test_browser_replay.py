@@ -201,3 +201,13 @@ def test_page_camera_looks_along_the_gifs_line_of_sight() -> None:
     gif_direction = (gif_eye - target) / np.linalg.norm(gif_eye - target)
     page_direction = (camera_eye(view) - target) / np.linalg.norm(camera_eye(view) - target)
     assert np.allclose(gif_direction, page_direction, atol=1e-6)
+
+
+def test_a_thinned_recording_keeps_its_ends_and_at_most_the_frames_asked_for(
+    recording: SceneRecording,
+) -> None:
+    thinned = recording.thinned(10)
+    assert 2 <= len(thinned.times) <= 10
+    assert thinned.times[0] == recording.times[0] and thinned.times[-1] == recording.times[-1]
+    assert np.array_equal(thinned.positions[-1], recording.positions[-1])
+    assert recording.thinned(len(recording.times)) is recording

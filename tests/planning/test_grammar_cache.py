@@ -13,7 +13,8 @@ from pddl.parser.domain import DomainParser, DomainTransformer
 from pddl.parser.problem import ProblemParser, ProblemTransformer
 
 from kitchen_tamp.planning import grammar_cache
-from kitchen_tamp.planning.grammar_cache import StartSymbol, cache_directory, parse_with, pddl_parser
+from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
+from kitchen_tamp.planning.user_cache import cache_directory
 from tests.planning.conftest import KITCHEN
 
 

@@ -34,7 +34,7 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
-from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, write_timeline_replay
+from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, RolloutRecorder, write_timeline_replay
 from kitchen_tamp.execute.physics_replanning import Replanner
 from kitchen_tamp.kitchen import KitchenError, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
@@ -232,8 +232,9 @@ def verify_and_render(
     if not verification.verified:
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
     report.timing["verification_s"] = time.perf_counter() - clock
+    rollout = None if args.no_video else RolloutRecorder()
     if not args.no_physics:
-        judge_under_physics(task, trajectory, report, replan=_physics_replanner(run))
+        judge_under_physics(task, trajectory, report, on_frame=rollout, replan=_physics_replanner(run))
     clock = time.perf_counter()
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
     show_velocities = run.mode == "optimizes"
@@ -244,7 +245,13 @@ def verify_and_render(
     if not args.no_video:
         with build_kitchen_for_task(task) as kitchen:
             html_clock = time.perf_counter()
-            report.outputs["html"] = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, live).name
+            if rollout is not None and rollout.captured:  # the motion the simulator executed
+                report.outputs["html"] = rollout.write(out_dir / HTML_FILE, live).name
+                report.outputs["html_shows"] = "physics"
+            else:
+                html = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, live)
+                report.outputs["html"] = html.name
+                report.outputs["html_shows"] = "kinematic replay"
             report.timing["html_s"] = time.perf_counter() - html_clock
             images = render_replay(kitchen, timeline)
         report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name

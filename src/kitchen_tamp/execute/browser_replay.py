@@ -215,6 +215,37 @@ def write_timeline_replay(
     return write_browser_replay(recording, path, overview_camera(kitchen))
 
 
+class RolloutRecorder:
+    """An ``on_frame(time_s, kitchen)`` callback for a physics rollout: records the kitchen it is
+    shown (the simulator's own), so that ``replay.html`` shows the physical motion."""
+
+    def __init__(self) -> None:
+        self._recorder: SceneRecorder | None = None
+        self._camera: CameraView | None = None
+
+    def __call__(self, time_s: float, kitchen: KitchenScene) -> None:
+        if self._recorder is None or self._recorder.scene is not kitchen.scene:
+            if self._recorder is not None:
+                return  # a re-plan's scratch kitchen: the rollout's own scene is the one shown
+            self._recorder = SceneRecorder(kitchen.scene)
+            self._camera = overview_camera(kitchen)
+        self._recorder.capture(time_s)
+
+    @property
+    def captured(self) -> bool:
+        """Whether at least two frames were recorded."""
+        return self._recorder is not None and len(self._recorder.recording().times) >= 2
+
+    def write(self, path: Path, live: LiveViewer | None = None) -> Path:
+        """``replay.html`` of what was recorded (thinned to ``MAX_FRAMES``); ``live`` gets it too."""
+        if self._recorder is None:
+            raise ValueError("no frame of the rollout was recorded")
+        recording = self._recorder.recording().thinned(MAX_FRAMES)
+        if live is not None:
+            live.play(recording)
+        return write_browser_replay(recording, path, self._camera)
+
+
 class LiveViewer:
     """The live viewer (``--meshcat``): the kitchen drawn in Meshcat, served on this machine while
     the program runs; ``update`` shows the kitchen as it is now, ``play`` gives it a recording."""

@@ -46,6 +46,16 @@ class SceneRecording:
         if np.any(np.diff(self.times) <= 0.0):
             raise ValueError("recording times must increase")
 
+    def thinned(self, max_frames: int) -> SceneRecording:
+        """Every k-th frame (the last always kept), so that at most ``max_frames`` remain."""
+        if max_frames < 2:
+            raise ValueError(f"a thinned recording keeps at least 2 frames, not {max_frames}")
+        if len(self.times) <= max_frames:
+            return self
+        stride = int(np.ceil((len(self.times) - 1) / (max_frames - 1)))
+        keep = np.append(np.arange(0, len(self.times) - 1, stride), len(self.times) - 1)
+        return SceneRecording(self.links, self.times[keep], self.positions[keep], self.quaternions[keep])
+
     @property
     def duration(self) -> float:
         """Seconds from the first frame to the last."""

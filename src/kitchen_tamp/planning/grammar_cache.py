@@ -26,7 +26,6 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import io
-import os
 import sys
 from pathlib import Path
 from typing import Any, Literal, TypeVar
@@ -37,21 +36,14 @@ from lark.exceptions import VisitError
 from pddl.__version__ import __version__ as pddl_version
 from pddl.parser import GRAMMAR_FILE, PARSERS_DIRECTORY
 
+from kitchen_tamp.planning.user_cache import cache_directory
+
 T = TypeVar("T")
 
 CACHE_FORMAT = 1
 """Bumped when the layout of the cache files changes."""
 
-CACHE_DIRECTORY_NAME = "kitchen_tamp"
-
 StartSymbol = Literal["domain", "problem"]
-
-
-def cache_directory() -> Path:
-    """``$XDG_CACHE_HOME/kitchen_tamp``, or ``~/.cache/kitchen_tamp`` when it is unset or relative."""
-    configured = os.environ.get("XDG_CACHE_HOME", "")
-    base = Path(configured) if configured and os.path.isabs(configured) else Path.home() / ".cache"
-    return base / CACHE_DIRECTORY_NAME
 
 
 def cache_key(start: StartSymbol, grammar: str) -> str:

@@ -15,7 +15,8 @@ from functools import lru_cache
 from pathlib import Path
 
 from kitchen_tamp.planning.grounding import ground
-from kitchen_tamp.planning.pddl_files import parse_domain_text, parse_problem, read_pddl, resolve_problem_path
+from kitchen_tamp.planning.pddl_files import parse_domain_text, parse_problem
+from kitchen_tamp.planning.pddl_paths import read_pddl, resolve_problem_path
 from kitchen_tamp.planning.schemas import DomainModel, translate_problem
 from kitchen_tamp.planning.task import Task
 

@@ -23,12 +23,11 @@ from pddl.parser.problem import ProblemTransformer
 
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
+from kitchen_tamp.planning.pddl_paths import PDDL_DIR as PDDL_DIR
+from kitchen_tamp.planning.pddl_paths import read_pddl
+from kitchen_tamp.planning.pddl_paths import resolve_problem_path as resolve_problem_path
 
 T = TypeVar("T")
-
-PDDL_DIR = Path(__file__).resolve().parents[3] / "pddl"
-"""The repository's ``pddl/`` folder, where bare problem names are also looked up."""
-
 
 @dataclass(frozen=True)
 class PddlSource:
@@ -55,31 +54,6 @@ class PddlSource:
         """An input error placed at ``name``'s first occurrence, if found."""
         line, column = self.locate(name, after) if name else (None, None)
         return PlanningInputError(message, self.path, line, column)
-
-
-def resolve_problem_path(problem: str | Path) -> Path:
-    """The problem file: as given, else a bare name looked up in ``pddl/``.
-
-    This lets ``activity_planning.py problem_hard.pddl`` work from the
-    repository root as well as from inside ``pddl/``.
-    """
-    path = Path(problem)
-    if path.exists() or path.parent != Path("."):
-        return path
-    candidate = PDDL_DIR / path
-    return candidate if candidate.exists() else path
-
-
-def read_pddl(path: Path, what: str) -> str:
-    """The text of a PDDL file; a missing or unreadable file is an input error naming ``what``."""
-    if not path.exists():
-        raise PlanningInputError(f"{what} file not found", path)
-    if path.is_dir():
-        raise PlanningInputError(f"{what} path is a directory, expected a PDDL file", path)
-    try:
-        return path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise PlanningInputError(f"cannot read {what} file: {error}", path) from error
 
 
 def _syntax_error(error: Exception, path: Path, what: str) -> PlanningInputError:

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 Atom = tuple[str, ...]
 """A ground atom as (predicate, arg, ...), e.g. ``("boxOn", "sugar", "stove")``."""
@@ -91,17 +90,13 @@ ActionEntry = tuple[int, int, int, int, int]
 """One action as the searches see it: (pre, pre_neg, ~delete, add, index into ``Task.actions``)."""
 
 
-class SuccessorTable(NamedTuple):
-    """Actions grouped for fast successor generation.
+SuccessorTable = tuple[int, dict[int, tuple[ActionEntry, ...]], tuple[ActionEntry, ...]]
+"""Actions grouped for fast successor generation: ``(key_mask, by_key, unconditional)``.
 
-    ``by_key`` maps the bit of an atom (``1 << id``) to the actions keyed by it,
-    ``key_mask`` is the union of those bits and ``unconditional`` holds the
-    actions without positive preconditions. A child is ``(state & keep) | add``.
-    """
-
-    key_mask: int
-    by_key: dict[int, tuple[ActionEntry, ...]]
-    unconditional: tuple[ActionEntry, ...]
+``by_key`` maps the bit of an atom (``1 << id``) to the actions keyed by it,
+``key_mask`` is the union of those bits and ``unconditional`` holds the
+actions without positive preconditions. A child is ``(state & keep) | add``.
+"""
 
 
 @dataclass(frozen=True)
@@ -181,8 +176,8 @@ class Task:
                     keyed.setdefault(1 << key, []).append(entry)
                 else:
                     unconditional.append(entry)
-            table = SuccessorTable(mask_of(k.bit_length() - 1 for k in keyed),
-                                   {k: tuple(v) for k, v in keyed.items()}, tuple(unconditional))
+            table = (mask_of(k.bit_length() - 1 for k in keyed), {k: tuple(v) for k, v in keyed.items()},
+                     tuple(unconditional))
             object.__setattr__(self, "_successor_table", table)
         return table
 

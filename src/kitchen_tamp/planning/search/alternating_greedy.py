@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import heapq
 import itertools
-from typing import Generic, TypeVar
 
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
@@ -32,6 +31,19 @@ from kitchen_tamp.planning.task import State, Task
 
 DEFAULT_BOOST = 1000
 """Turns the preferred queue gets in a row after each improvement of the best h (Fast Downward's default)."""
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from typing import Generic, TypeVar
+else:  # what the generic class needs at run time, where its type parameter is never looked at
+
+    class Generic:
+        def __class_getitem__(cls, _parameter: object) -> type:
+            return cls
+
+    def TypeVar(name: str) -> str:
+        return name
+
 
 Item = TypeVar("Item")
 

@@ -25,13 +25,16 @@ from collections import deque
 from kitchen_tamp.planning.heuristics import (
     INFINITY,
     HelpfulHeuristic,
-    HeuristicName,
     RelaxedExploration,
     make_heuristic,
 )
 from kitchen_tamp.planning.search.breadth_first import dead_root_result
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import GroundAction, State, Task
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from kitchen_tamp.planning.heuristics import HeuristicName
 
 ALL_ACTIONS = -1
 """The helpful-action bitset that allows every action (all bits set)."""

@@ -6,11 +6,14 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import Literal
 
 from kitchen_tamp.planning.task import GroundAction, State, Task
 
-SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from typing import Literal
+
+    SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
 """``unsolvable``: the reachable states were exhausted without a goal (a proof);
 ``failed``: an incomplete search (enforced hill climbing) gave up, which proves
 nothing; ``budget``: time or expansions ran out."""
