@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from kitchen_tamp.execute.playback import interpolate_segment
 from kitchen_tamp.joint_spacing import coarse_to_fine_order, interior_fractions, interval_count
 from kitchen_tamp.kitchen import Segment
+from kitchen_tamp.kitchen.segment import interpolate_segment
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 

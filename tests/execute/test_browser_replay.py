@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.cli.final_project import main
-from kitchen_tamp.execute import SavedRun, build_timeline, write_trajectory
+from kitchen_tamp.execute import SavedRun, Verification, build_timeline, write_trajectory
 from kitchen_tamp.execute.browser_replay import (
     HTML_FILE,
     MAX_FRAMES,
@@ -38,16 +38,21 @@ PAGE_LOAD_TIMEOUT_S = 240.0
 
 
 @pytest.fixture(scope="module")
-def recording(kitchen_task: Task, refined: KitchenTrajectory) -> SceneRecording:
+def recording(kitchen_task: Task, refined: KitchenTrajectory, verified: Verification) -> SceneRecording:
     with build_kitchen_for_task(kitchen_task) as kitchen:
-        return record_timeline(kitchen, build_timeline(refined))
+        return record_timeline(kitchen, build_timeline(refined, verified.tracks))
 
 
 @pytest.fixture(scope="module")
-def page(kitchen_task: Task, refined: KitchenTrajectory, tmp_path_factory: pytest.TempPathFactory) -> Path:
+def page(
+    kitchen_task: Task,
+    refined: KitchenTrajectory,
+    verified: Verification,
+    tmp_path_factory: pytest.TempPathFactory,
+) -> Path:
     with build_kitchen_for_task(kitchen_task) as kitchen:
         path = tmp_path_factory.mktemp("page") / HTML_FILE
-        return write_timeline_replay(kitchen, build_timeline(refined), path)
+        return write_timeline_replay(kitchen, build_timeline(refined, verified.tracks), path)
 
 
 def _index(recording: SceneRecording, body: str, link: str) -> int:
@@ -55,9 +60,9 @@ def _index(recording: SceneRecording, body: str, link: str) -> int:
 
 
 def test_recording_draws_every_visual_and_ends_where_the_replay_ends(
-    kitchen_task: Task, refined: KitchenTrajectory, recording: SceneRecording
+    kitchen_task: Task, refined: KitchenTrajectory, verified: Verification, recording: SceneRecording
 ) -> None:
-    timeline = build_timeline(refined)
+    timeline = build_timeline(refined, verified.tracks)
     with build_kitchen_for_task(kitchen_task) as kitchen:
         before = kitchen.scene.save_state()
         again = record_timeline(kitchen, timeline)

@@ -29,7 +29,7 @@ def test_a_refined_plan_verifies(kitchen_task: Task, refined: KitchenTrajectory)
 
 
 def test_every_checked_state_is_close_to_the_next(kitchen_task: Task, refined: KitchenTrajectory) -> None:
-    from kitchen_tamp.execute.playback import LINEAR_STEP, interpolate_segment
+    from kitchen_tamp.kitchen.segment import LINEAR_STEP, interpolate_segment
 
     for step in refined.steps:
         for segment in step.segments:

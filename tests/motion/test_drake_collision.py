@@ -107,12 +107,18 @@ def test_checks_the_same_pairs_as_pybullet(request: pytest.FixtureRequest, scene
     assert pair.drake.checked_pairs == pybullet
 
 
-def test_allowed_contacts_are_left_out(kitchen: KitchenScene) -> None:
+def test_allowed_contacts_are_checked_to_their_bound(kitchen: KitchenScene) -> None:
     handle = AllowedContact("kitchen", "drawer_handle", kitchen.robot.gripper_links)
     checker = make_collision_checker(kitchen.scene, kitchen.robot, [handle])
     drake = drake_twin(kitchen, checker)
-    assert frozenset(("panda/panda_hand", "kitchen/drawer_handle")) not in drake.checked_pairs
-    assert frozenset(("panda/panda_link7", "kitchen/drawer_handle")) in drake.checked_pairs
+    gripper_on_handle = frozenset(("panda/panda_hand", "kitchen/drawer_handle"))
+    assert gripper_on_handle in drake.checked_pairs
+    assert drake.contact_pairs == {gripper_on_handle: handle.max_penetration} | {
+        frozenset((f"panda/{link}", "kitchen/drawer_handle")): handle.max_penetration
+        for link in kitchen.robot.gripper_links
+        if frozenset((f"panda/{link}", "kitchen/drawer_handle")) in drake.checked_pairs
+    }
+    assert frozenset(("panda/panda_link7", "kitchen/drawer_handle")) not in drake.contact_pairs
 
 
 def test_hand_in_the_countertop_collides_in_both(kitchen: KitchenScene, free: CheckerPair) -> None:

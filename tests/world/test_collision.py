@@ -13,6 +13,7 @@ from kitchen_tamp.world import (
     Scene,
     make_collision_checker,
 )
+from kitchen_tamp.world.checked_pairs import CONTACT_PENETRATION_BOUND
 from tests.world.conftest import down_rotation
 
 
@@ -76,17 +77,34 @@ def test_checks_leave_the_arm_where_it_was(panda_scene: tuple[Scene, Robot]) -> 
 def test_allowed_contact_ignores_only_that_link(panda_scene: tuple[Scene, Robot]) -> None:
     scene, robot = panda_scene
     _, inside = above_and_inside_counter(scene, robot)
-    all_kitchen = make_collision_checker(scene, robot, [AllowedContact("kitchen")])
+    unbounded = AllowedContact("kitchen", max_penetration=float("inf"))
+    all_kitchen = make_collision_checker(scene, robot, [unbounded])
     assert not any(other.startswith("kitchen") for _, other in all_kitchen.colliding_pairs(inside))
     only_handle = AllowedContact("kitchen", "drawer_handle", robot.gripper_links)
     assert not make_collision_checker(scene, robot, [only_handle]).is_valid(inside)[0]
+
+
+def test_an_allowed_contact_is_bounded_in_depth(panda_scene: tuple[Scene, Robot]) -> None:
+    """Contact with the whole kitchen allowed at the default bound: the hand deep in the
+    counter is still a collision, named, and its clearance counts from the bound."""
+    scene, robot = panda_scene
+    _, inside = above_and_inside_counter(scene, robot)
+    bounded = make_collision_checker(scene, robot, [AllowedContact("kitchen")])
+    strict = make_collision_checker(scene, robot)
+    assert not bounded.is_valid(inside)[0]
+    assert any(other.startswith("kitchen") for _, other in bounded.colliding_pairs(inside))
+    assert bounded.min_clearance(inside)[0] == pytest.approx(
+        strict.min_clearance(inside)[0] + CONTACT_PENETRATION_BOUND, abs=1e-6
+    )
 
 
 def test_self_collision_is_detected(panda_scene: tuple[Scene, Robot]) -> None:
     """Fold the hand back onto the base: found by sampling, checked against a checker with
     every other body allowed, so only self-collision can make it invalid."""
     scene, robot = panda_scene
-    allow_world = [AllowedContact(b.name) for b in scene.bodies if b is not robot.body]
+    unbounded = float("inf")
+    others = [b for b in scene.bodies if b is not robot.body]
+    allow_world = [AllowedContact(b.name, max_penetration=unbounded) for b in others]
     checker = make_collision_checker(scene, robot, allow_world)
     rng = np.random.default_rng(0)
     samples = rng.uniform(robot.lower, robot.upper, size=(400, robot.dof))

@@ -35,38 +35,48 @@ def _ancestry(body: Body, link: int) -> list[tuple[int, bool]]:
     return chain
 
 
+def _allowance(allowed: Sequence[AllowedContact], robot_link: str, body: str, link: str) -> float:
+    return max((a.max_penetration for a in allowed if a.allows(robot_link, body, link)), default=0.0)
+
+
+def _carried_allowance(allowed: Sequence[AllowedContact], carried: str, body: str, link: str) -> float:
+    return max((a.max_penetration for a in allowed if a.allows_carried(carried, body, link)), default=0.0)
+
+
 def _reference_distances(
     scene: Scene, robot: Robot, allowed: Sequence[AllowedContact], horizon: float
-) -> list[float]:
-    """Every checked pair's distances at the current state, one whole-body query at a time."""
+) -> list[tuple[float, float]]:
+    """(distance, allowance) of every checked pair at the current state, one whole-body
+    query at a time."""
     body, client = robot.body, robot.body.client
     carried = [a for a in scene.attachments if a.parent is body]
     obstacles = [b for b in scene.bodies if b is not body and all(b is not a.child for a in carried)]
     first_arm_link = body.joint(robot.description.arm_joints[0]).index
     moving = {i for i in body.link_indices if any(lnk == first_arm_link for lnk, _ in _ancestry(body, i))}
-    gripper = {body.link_index(n) for n in robot.gripper_links}
     distances = []
     for obstacle in obstacles:
         for pt in p.getClosestPoints(body.uid, obstacle.uid, horizon, physicsClientId=client):
             names = (body.link_name(pt[3]), obstacle.name, obstacle.link_name(pt[4]))
-            if pt[3] in moving and not any(a.allows(*names) for a in allowed):
-                distances.append(pt[8])
+            if pt[3] in moving:
+                distances.append((pt[8], _allowance(allowed, *names)))
     for attachment in carried:
+        child = attachment.child
         for other in obstacles:
             distances += [
-                pt[8]
-                for pt in p.getClosestPoints(attachment.child.uid, other.uid, horizon, physicsClientId=client)
+                (pt[8], _carried_allowance(allowed, child.name, other.name, other.link_name(pt[4])))
+                for pt in p.getClosestPoints(child.uid, other.uid, horizon, physicsClientId=client)
             ]
-        for pt in p.getClosestPoints(attachment.child.uid, body.uid, horizon, physicsClientId=client):
-            if pt[4] not in gripper:
-                distances.append(pt[8])
+        for pt in p.getClosestPoints(child.uid, body.uid, horizon, physicsClientId=client):
+            names = (body.link_name(pt[4]), child.name, child.link_name(pt[3]))
+            distances.append((pt[8], _allowance(allowed, *names)))
     shaped = [i for i in body.link_indices if p.getCollisionShapeData(body.uid, i, physicsClientId=client)]
     for a, b in itertools.combinations(shaped, 2):
         chain_a, chain_b = _ancestry(body, a), _ancestry(body, b)
         shared = {lnk for lnk, _ in chain_a} & {lnk for lnk, _ in chain_b}
         if sum(m for lnk, m in chain_a + chain_b if lnk not in shared) >= 2:
             distances += [
-                pt[8] for pt in p.getClosestPoints(body.uid, body.uid, horizon, a, b, physicsClientId=client)
+                (pt[8], 0.0)
+                for pt in p.getClosestPoints(body.uid, body.uid, horizon, a, b, physicsClientId=client)
             ]
     return distances
 
@@ -77,10 +87,10 @@ def _reference(
     """(valid, min clearance capped at 0.5) at ``q``, the scene put back afterwards."""
     with scene.preserved():
         robot.set_configuration(q)
-        valid = robot.within_limits(q) and all(
-            d >= margin for d in _reference_distances(scene, robot, allowed, max(margin, 0.0))
-        )
-        clearance = min(_reference_distances(scene, robot, allowed, 0.5), default=0.5)
+        near = _reference_distances(scene, robot, allowed, max(margin, 0.0))
+        valid = robot.within_limits(q) and all(d >= (-a if a > 0.0 else margin) for d, a in near)
+        measured = _reference_distances(scene, robot, allowed, 0.5)
+        clearance = min([d + a for d, a in measured if a == 0.0 or d + a < 0.0], default=0.5)
     return valid, clearance
 
 
@@ -124,10 +134,10 @@ def _assert_agrees(
 
 
 def _hold_sugar(scene: Scene, robot: Robot) -> Body:
-    """Attach the sugar box under the hand, the fingers around it."""
+    """Attach the sugar box just below the fingertips."""
     box = scene.body("sugar")
     robot.set_configuration(robot.mid_configuration())
-    box.reset_base_pose(robot.tool_pose().translated((0.0, 0.0, -0.03)))
+    box.reset_base_pose(robot.tool_pose().translated((0.0, 0.0, -0.12)))
     scene.attach(box, robot.body, robot.description.hand_link)
     return box
 

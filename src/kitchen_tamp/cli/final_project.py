@@ -23,6 +23,7 @@ from kitchen_tamp.execute import (
     TRAJECTORY_FILE,
     RunReport,
     SavedRun,
+    Timeline,
     TrajectoryFileError,
     build_timeline,
     judge_under_physics,
@@ -37,7 +38,6 @@ from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, RolloutRe
 from kitchen_tamp.execute.physics_replanning import Replanner
 from kitchen_tamp.kitchen import KitchenError, KitchenMap, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.scene_choice import choose_scene
-from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
@@ -202,9 +202,8 @@ def _wait_for_enter(index: int, action: str) -> None:
     input(f"step {index + 1}: {action}  (press Enter)")
 
 
-def _play_in_window(kitchen: KitchenScene, trajectory: KitchenTrajectory, step: bool) -> None:
+def _play_in_window(kitchen: KitchenScene, timeline: Timeline, step: bool) -> None:
     """Play the run at nominal speed in the GUI scene (waiting for Enter per action if asked)."""
-    timeline = build_timeline(trajectory)
     times = np.arange(0.0, timeline.duration, 1.0 / 30.0)
     current = -1
     for _, index in timeline.play(kitchen, times):
@@ -232,9 +231,10 @@ def verify_and_render(
         live = _start_live_viewer(fresh) if args.meshcat and live is None else live
         initial = fresh.scene.save_state()
         verification = verify_trajectory(fresh, task, trajectory, on_step=wait)
+        timeline = build_timeline(trajectory, verification.tracks)
         if args.gui:
             fresh.scene.restore_state(initial)
-            _play_in_window(fresh, trajectory, args.step)
+            _play_in_window(fresh, timeline, args.step)
     report.verification = verification.report_data()
     if not verification.verified:
         report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
@@ -244,7 +244,6 @@ def verify_and_render(
         judge_under_physics(task, trajectory, report, on_frame=rollout, replan=_physics_replanner(run),
                             kitchen_map=kitchen_map)
     clock = time.perf_counter()
-    timeline = build_timeline(trajectory)
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles"
     show_velocities = run.mode == "optimizes"
     if show_velocities:
@@ -350,6 +349,9 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     out_dir: Path = args.out or args.run_dir
     check_output_folder(out_dir, "--out" if args.out else "RUN_DIR")
     run = read_trajectory(args.run_dir / TRAJECTORY_FILE)
+    if run.ignored_fields:
+        _say(f"note: not reading {', '.join(run.ignored_fields)} from the trajectory file: the judge "
+             "derives them from the kitchen")
     task = load_task(run.problem, run.domain)
     kitchen_map = choose_scene(run.problem, args.scene, run.domain).kitchen_map()
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)

@@ -17,7 +17,7 @@ import numpy as np
 
 from kitchen_tamp.execute.verification import parse_action
 from kitchen_tamp.kitchen import KitchenScene
-from kitchen_tamp.kitchen.open_drawer import pull_direction
+from kitchen_tamp.kitchen.action_replay import pull_direction
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
 from kitchen_tamp.world import FloatArray, Pose

@@ -1,9 +1,16 @@
 """``trajectory.json``: a refined plan as data, enough to replay and verify it without planning.
 
-Per action: its PDDL text and its segments, each with joint waypoints, gripper
-widths, the box the hand carries, the drawer joint values when a drawer moves
-with the hand, and the contacts intended along it. Floats are written with full
-precision, so a replay sees exactly what was planned.
+Only what a planner decides: per action its PDDL text and its segments, each
+with a name (a label for people), joint waypoints and gripper widths. What rides
+with the hand, where the drawer is and which contacts are intended are not in
+the file: the judge derives them (``kitchen_tamp.kitchen.replay_action``).
+Floats are written with full precision, so a replay sees exactly what was
+planned.
+
+Files of the first format (``kitchen_tamp.trajectory/1``) are still read, but
+the fields it also carried (``LEGACY_SEGMENT_FIELDS``: the carried box, the
+drawer values, the allowed contacts) are ignored, never believed; the run
+lists them in ``SavedRun.ignored_fields``.
 """
 
 from __future__ import annotations
@@ -18,9 +25,12 @@ import numpy as np
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.kitchen import Segment
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
-from kitchen_tamp.world import AllowedContact
 
-TRAJECTORY_FORMAT = "kitchen_tamp.trajectory/1"
+TRAJECTORY_FORMAT = "kitchen_tamp.trajectory/2"
+READABLE_FORMATS = ("kitchen_tamp.trajectory/1", TRAJECTORY_FORMAT)
+"""Formats ``read_trajectory`` accepts; the first one's extra fields are ignored."""
+LEGACY_SEGMENT_FIELDS = ("attached_box", "openable", "drawer_values", "allowed_contacts")
+"""Segment fields of the first format that a judge must not take on trust, so never reads."""
 TRAJECTORY_FILE = "trajectory.json"
 
 
@@ -37,11 +47,8 @@ class SavedRun:
     mode: str
     seed: int
     trajectory: KitchenTrajectory
-
-
-def _contact_data(contact: AllowedContact) -> dict[str, Any]:
-    links = None if contact.robot_links is None else sorted(contact.robot_links)
-    return {"body": contact.body, "link": contact.link, "robot_links": links}
+    ignored_fields: tuple[str, ...] = ()
+    """Fields the file carried that the judge derives instead (sorted; none in the current format)."""
 
 
 def _segment_data(segment: Segment) -> dict[str, Any]:
@@ -49,10 +56,6 @@ def _segment_data(segment: Segment) -> dict[str, Any]:
         "name": segment.name,
         "configurations": segment.configurations.tolist(),
         "gripper_widths": segment.gripper_widths.tolist(),
-        "attached_box": segment.attached_box,
-        "openable": segment.openable,
-        "drawer_values": None if segment.drawer_values is None else segment.drawer_values.tolist(),
-        "allowed_contacts": [_contact_data(c) for c in segment.allowed_contacts],
     }
 
 
@@ -76,23 +79,11 @@ def write_trajectory(path: Path, run: SavedRun) -> Path:
     return write_atomically(path, json.dumps(trajectory_data(run), indent=1) + "\n")
 
 
-def _contact(data: dict[str, Any]) -> AllowedContact:
-    links = data.get("robot_links")
-    return AllowedContact(
-        str(data["body"]), data.get("link"), None if links is None else frozenset(str(n) for n in links)
-    )
-
-
 def _segment(data: dict[str, Any]) -> Segment:
-    drawer = data.get("drawer_values")
     return Segment(
         name=str(data["name"]),
         configurations=np.asarray(data["configurations"], dtype=float),
         gripper_widths=np.asarray(data["gripper_widths"], dtype=float),
-        attached_box=data.get("attached_box"),
-        openable=data.get("openable"),
-        drawer_values=None if drawer is None else np.asarray(drawer, dtype=float),
-        allowed_contacts=tuple(_contact(c) for c in data.get("allowed_contacts", [])),
     )
 
 
@@ -104,7 +95,7 @@ def read_trajectory(path: Path) -> SavedRun:
         raise TrajectoryFileError(f"{path}: no such file (is this a run directory?)") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
         raise TrajectoryFileError(f"{path}: not a readable JSON file ({error})") from None
-    if not isinstance(data, dict) or data.get("format") != TRAJECTORY_FORMAT:
+    if not isinstance(data, dict) or data.get("format") not in READABLE_FORMATS:
         raise TrajectoryFileError(f"{path}: not a {TRAJECTORY_FORMAT} file")
     try:
         steps = tuple(
@@ -117,6 +108,12 @@ def read_trajectory(path: Path) -> SavedRun:
             mode=str(data["mode"]),
             seed=int(data["seed"]),
             trajectory=KitchenTrajectory(steps),
+            ignored_fields=tuple(
+                sorted(
+                    {key for step in data["steps"] for s in step["segments"] for key in s}
+                    & set(LEGACY_SEGMENT_FIELDS)
+                )
+            ),
         )
     except (KeyError, TypeError, ValueError) as error:
         raise TrajectoryFileError(f"{path}: malformed trajectory ({error})") from None

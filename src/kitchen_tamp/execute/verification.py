@@ -1,11 +1,20 @@
 """Replay a trajectory in a freshly built kitchen and verify it, independently of the planner.
 
+The trajectory gives only what a planner decides: per action its text, per
+segment arm configurations and gripper widths. Everything else is derived, per
+action, by ``kitchen_tamp.kitchen.replay_action`` from the action, the kitchen
+and the geometry: which box rides with the hand (from when the closing fingers
+hold a box the action names until they open), where the drawer is (it follows
+the hand only while the fingers hold its handle), and which contacts are
+intended (only the action's own objects, each at most
+``CONTACT_PENETRATION_BOUND`` deep).
+
 Checked: the trajectory starts at the arm's home and is continuous; every
-segment is collision-free at states at most ``resolution`` rad apart (intended
-contacts, e.g. fingers on the box being grasped, excepted) and within the joint
-limits; after every action the scene's abstraction Ψ is the state the symbolic
-plan predicts (so drawer opening and box poses are what the atoms say); at the
-end Ψ entails the goal.
+segment is collision-free at states at most ``resolution`` rad apart, with
+every pair of ``kitchen_tamp.world.checked_pairs`` checked (boxes riding the
+drawer against the cabinet while it moves); the joint limits; fingers never
+close on nothing the action names; after every action the scene's abstraction
+Ψ is the state the symbolic plan predicts; at the end Ψ entails the goal.
 """
 
 from __future__ import annotations
@@ -15,16 +24,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kitchen_tamp.execute.playback import SegmentSamples, interpolate_segment
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
-from kitchen_tamp.kitchen import KitchenScene, Segment, abstract_state, enter_segment, set_waypoint
+from kitchen_tamp.kitchen import (
+    CONTACT_PENETRATION_BOUND,
+    KitchenScene,
+    SegmentTrack,
+    abstract_state,
+    replay_action,
+)
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, Task, atom_text
 
 
 @dataclass
 class Verification:
-    """What the replay found; ``verified`` when every check passed."""
+    """What the replay found; ``verified`` when every check passed. ``tracks`` are the
+    replayed segments, step by step, with what the judge derived along them (for pictures)."""
 
     resolution_rad: float
     collision_free: bool = True
@@ -37,6 +52,7 @@ class Verification:
     goal_atoms: dict[str, bool] = field(default_factory=dict)
     final_atoms: list[str] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
+    tracks: list[tuple[SegmentTrack, ...]] = field(default_factory=list)
 
     @property
     def goal_reached(self) -> bool:
@@ -60,6 +76,7 @@ class Verification:
             "collision_free": self.collision_free,
             "min_clearance_m": round(self.min_clearance_m, 6),
             "closest_approach": self.closest_approach,
+            "contact_penetration_bound_m": CONTACT_PENETRATION_BOUND,
             "goal_atoms": dict(self.goal_atoms),
             "within_joint_limits": self.within_joint_limits,
             "continuous": self.continuous,
@@ -71,57 +88,14 @@ class Verification:
         }
 
 
+def _words(text: str) -> list[str]:
+    return text.strip().removeprefix("(").removesuffix(")").split()
+
+
 def parse_action(task: Task, text: str) -> GroundAction | None:
     """The task's ground action written as ``(name arg ...)``, or None."""
-    words = text.strip().removeprefix("(").removesuffix(")").split()
+    words = _words(text)
     return task.action_named(words[0], words[1:]) if words else None
-
-
-def _segment_clearances(kitchen: KitchenScene, segment: Segment, samples: SegmentSamples) -> np.ndarray:
-    """Signed clearance (m) at each sample; one checker per gripper width, since the
-    checker snapshots the fingers as they are."""
-    clearances = np.empty(len(samples))
-    for width in np.unique(samples.gripper_widths):
-        rows = np.flatnonzero(samples.gripper_widths == width)
-        with kitchen.scene.preserved():
-            kitchen.robot.set_gripper_width(float(width))
-            checker = kitchen.collision_checker(segment.allowed_contacts)
-        qs = samples.configurations[rows]
-        if segment.openable is not None and samples.drawer_values is not None:
-            joint = kitchen.map.openables[segment.openable].joint
-            clearances[rows] = checker.min_clearance_along(
-                qs, kitchen.kitchen, [joint], samples.drawer_values[rows]
-            )
-        else:
-            clearances[rows] = checker.min_clearance(qs)
-    return clearances
-
-
-def _check_segment(
-    kitchen: KitchenScene, label: str, segment: Segment, resolution: float, result: Verification
-) -> None:
-    enter_segment(kitchen, segment)
-    samples = interpolate_segment(segment, resolution)
-    result.configurations_checked += len(samples)
-    inside = [kitchen.robot.within_limits(q) for q in samples.configurations]
-    if not all(inside):
-        result.within_joint_limits = False
-        result.problems.append(f"{label}: outside the joint limits at state {inside.index(False)}")
-    clearances = _segment_clearances(kitchen, segment, samples)
-    lowest = int(np.argmin(clearances))
-    if clearances[lowest] < result.min_clearance_m:
-        result.min_clearance_m = float(clearances[lowest])
-        result.closest_approach = label
-    if clearances[lowest] < 0.0:
-        first = int(np.argmax(clearances < 0.0))
-        result.collision_free = False
-        checker = kitchen.collision_checker(segment.allowed_contacts)
-        pairs = ", ".join(f"{a}/{b}" for a, b in checker.colliding_pairs(samples.configurations[first]))
-        result.problems.append(
-            f"{label}: collision after waypoint {int(samples.waypoint_of[first])} "
-            f"({clearances[lowest] * 1000:.1f} mm deep){': ' + pairs if pairs else ''}"
-        )
-    set_waypoint(kitchen, segment, len(segment) - 1)
 
 
 def _atoms_text(atoms: frozenset[Atom]) -> list[str]:
@@ -150,24 +124,31 @@ def verify_trajectory(
     for index, step in enumerate(trajectory.steps):
         if on_step is not None:
             on_step(index, step.action)
+        label = f"step {index + 1} {step.action}"
         action = parse_action(task, step.action)
         if action is None:
-            result.problems.append(f"step {index + 1} {step.action}: not an action of the task")
+            result.problems.append(f"{label}: not an action of the task")
         elif not action.applicable(state):
-            result.problems.append(f"step {index + 1} {step.action}: not applicable in the planned state")
+            result.problems.append(f"{label}: not applicable in the planned state")
         else:
             state = action.apply(state)
-        for segment in step.segments:
-            _check_segment(
-                kitchen, f"step {index + 1} {step.action} {segment.name}", segment, resolution, result
-            )
+        args = action.args if action is not None else tuple(_words(step.action)[1:])
+        replay = replay_action(kitchen, label, args, step.segments, resolution, measure=True)
+        result.tracks.append(tuple(replay.tracks))
+        result.problems += replay.problems
+        result.configurations_checked += replay.configurations_checked
+        result.collision_free &= replay.collision_free
+        result.within_joint_limits &= replay.within_joint_limits
+        if replay.min_clearance_m < result.min_clearance_m:
+            result.min_clearance_m = replay.min_clearance_m
+            result.closest_approach = replay.closest_approach
         observed = abstract_state(kitchen, task.objects)
         expected = task.state_atoms(state)
         result.steps_as_planned.append(observed == expected)
         if observed != expected:
             result.problems.append(
-                f"step {index + 1} {step.action}: the scene shows {_atoms_text(observed - expected)} "
-                f"but the plan expects {_atoms_text(expected - observed)}"
+                f"{label} {step.segments[-1].name} (its last segment): the scene shows "
+                f"{_atoms_text(observed - expected)} but the plan expects {_atoms_text(expected - observed)}"
             )
     final = abstract_state(kitchen, task.objects)
     result.final_atoms = _atoms_text(final)

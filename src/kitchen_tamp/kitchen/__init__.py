@@ -8,6 +8,8 @@ targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
 """
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
+from kitchen_tamp.kitchen.action_replay import ActionReplay, SegmentTrack, first_problem, replay_action
+from kitchen_tamp.kitchen.contact_policy import CONTACT_PENETRATION_BOUND, check_initial_overlaps
 from kitchen_tamp.kitchen.errors import (
     InitialStateMismatchError,
     KitchenError,
@@ -24,13 +26,16 @@ from kitchen_tamp.kitchen.parameters import DEFAULT_PARAMETERS, SkillParameters
 from kitchen_tamp.kitchen.placements import Placement
 from kitchen_tamp.kitchen.regions import SupportRegion
 from kitchen_tamp.kitchen.scene_file import SceneFileError
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.skills import SKILLS, sample_action_targets, sample_targets
-from kitchen_tamp.kitchen.targets import Segment, SkillTargets, enter_segment, set_waypoint
+from kitchen_tamp.kitchen.targets import SkillTargets
 
 __all__ = [
+    "CONTACT_PENETRATION_BOUND",
     "DEFAULT_PARAMETERS",
     "RESTING_GAP",
     "SKILLS",
+    "ActionReplay",
     "Grasp",
     "InitialStateMismatchError",
     "KitchenError",
@@ -39,6 +44,7 @@ __all__ = [
     "Placement",
     "SceneFileError",
     "Segment",
+    "SegmentTrack",
     "SkillFailure",
     "SkillParameters",
     "SkillTargets",
@@ -49,12 +55,13 @@ __all__ = [
     "abstract_state",
     "build_kitchen",
     "build_kitchen_for_task",
+    "check_initial_overlaps",
     "check_initial_state",
     "default_kitchen_map",
-    "enter_segment",
+    "first_problem",
     "load_kitchen_map",
     "load_kitchen_problem",
+    "replay_action",
     "sample_action_targets",
     "sample_targets",
-    "set_waypoint",
 ]

@@ -154,8 +154,11 @@ class KitchenScene:
         self, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
     ) -> PyBulletCollisionChecker:
         """A checker of the scene as it is now (held box attached, drawers where they are);
-        with a ``margin`` (m), configurations closer than that to contact count as colliding."""
-        return make_collision_checker(self.scene, self.robot, allowed, margin)
+        with a ``margin`` (m), configurations closer than that to contact count as colliding.
+        The fingers may touch the box they hold (down to the contact bound)."""
+        held = self.held_box()
+        intended = tuple(allowed) + (() if held is None else (self.finger_contact(held),))
+        return make_collision_checker(self.scene, self.robot, intended, margin)
 
     def collision_free_ik(
         self,

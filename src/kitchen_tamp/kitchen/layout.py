@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, check_initial_state
+from kitchen_tamp.kitchen.contact_policy import check_initial_overlaps
 from kitchen_tamp.kitchen.errors import UnknownObjectError, UnsupportedInitialStateError
 from kitchen_tamp.kitchen.kitchen_map import (
     KITCHEN_BODY,
@@ -144,6 +145,7 @@ def build_kitchen(
             for name, pose in zip(names, poses, strict=True):
                 scene.set_base_pose(box_bodies[name], pose)
                 kitchen.settle(name)
+        check_initial_overlaps(kitchen)
         check_initial_state(kitchen, objects, init)
     except BaseException:
         scene.close()

@@ -7,12 +7,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.kitchen.action_replay import first_problem, pull_direction
 from kitchen_tamp.kitchen.errors import SkillFailure
 from kitchen_tamp.kitchen.grasps import sample_handle_grasp
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
-from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
+from kitchen_tamp.kitchen.targets import SkillTargets, action_text
 from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
 
 
@@ -42,19 +44,6 @@ class OpenProblem:
     released_checker: PyBulletCollisionChecker
     strict_released_checker: PyBulletCollisionChecker
     handle_contact: AllowedContact
-
-
-def pull_direction(kitchen: KitchenScene, openable: str) -> FloatArray:
-    """World direction the drawer moves in as its joint value grows (from kinematics)."""
-    link = kitchen.map.openables[openable].link
-    lower, upper = kitchen.opening_limits(openable)
-    with kitchen.scene.preserved():
-        kitchen.set_opening(openable, lower)
-        closed = kitchen.kitchen.link_pose(link).translation
-        kitchen.set_opening(openable, upper)
-        opened = kitchen.kitchen.link_pose(link).translation
-    direction = opened - closed
-    return np.asarray(direction / np.linalg.norm(direction))
 
 
 def handle_geometry(
@@ -101,13 +90,15 @@ def _checkers(
 
 def _segments_for_grasp(
     kitchen: KitchenScene,
+    action: tuple[str, tuple[str, ...]],
     problem: OpenProblem,
     world_from_tool: Pose,
     width: float,
     rng: np.random.Generator,
     parameters: SkillParameters,
 ) -> tuple[Segment, ...] | None:
-    """Approach, grip, pull, release and retreat for one handle grasp, or None."""
+    """Approach, grip, pull, release and retreat for one handle grasp, or None (also when the
+    judge would find a problem replaying them)."""
     reached = reach_along_tool_axis(
         kitchen, world_from_tool, problem.handle_checker, problem.clear_checker, rng, parameters
     )
@@ -133,18 +124,15 @@ def _segments_for_grasp(
         return None
     grip_qs, grip_widths = hold_still(q_grasp, (problem.open_width, width))
     release_qs, release_widths = hold_still(pull[-1], (width, problem.open_width))
-    touch = (problem.handle_contact,)
     open_width = problem.open_width
-    return (
-        Segment("approach", approach_path, np.full(len(approach_path), open_width), allowed_contacts=touch),
-        Segment("grip", grip_qs, grip_widths, allowed_contacts=touch),
-        Segment(
-            "pull", pull, np.full(len(pull), width), openable=problem.openable, drawer_values=drawer_values,
-            allowed_contacts=touch,
-        ),
-        Segment("release", release_qs, release_widths, allowed_contacts=touch),
-        Segment("retreat", retreat, np.full(len(retreat), open_width), allowed_contacts=touch),
+    segments = (
+        Segment("approach", approach_path, np.full(len(approach_path), open_width)),
+        Segment("grip", grip_qs, grip_widths),
+        Segment("pull", pull, np.full(len(pull), width)),
+        Segment("release", release_qs, release_widths),
+        Segment("retreat", retreat, np.full(len(retreat), open_width)),
     )
+    return None if first_problem(kitchen, action_text(action), action[1], segments) else segments
 
 
 def sample_open(
@@ -186,7 +174,7 @@ def sample_open(
         world_from_tool, width = sample_handle_grasp(
             handle.world_from_bar, handle.bar_size, direction, handle.free_half_length, rng
         )
-        segments = _segments_for_grasp(kitchen, problem, world_from_tool, width, rng, parameters)
+        segments = _segments_for_grasp(kitchen, action, problem, world_from_tool, width, rng, parameters)
         if segments is not None:
             return SkillTargets(
                 action=action,

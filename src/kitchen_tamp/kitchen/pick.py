@@ -6,13 +6,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.kitchen.action_replay import first_problem
 from kitchen_tamp.kitchen.errors import SkillFailure
 from kitchen_tamp.kitchen.grasps import Grasp, sample_box_grasp
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
 from kitchen_tamp.kitchen.regions import box_corners
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.straight_moves import hold_still, reach_along_tool_axis, straight_move
-from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
+from kitchen_tamp.kitchen.targets import SkillTargets, action_text
 from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
@@ -47,12 +49,14 @@ def _holding_checker(
 
 def _segments_for_grasp(
     kitchen: KitchenScene,
+    action: tuple[str, tuple[str, ...]],
     problem: PickProblem,
     grasp: Grasp,
     rng: np.random.Generator,
     parameters: SkillParameters,
 ) -> tuple[Segment, ...] | None:
-    """Approach, close and lift for one grasp, or None if any of them is infeasible."""
+    """Approach, close and lift for one grasp, or None if any of them is infeasible or the
+    judge would find a problem replaying them."""
     world_from_tool = problem.world_from_box @ grasp.object_from_tool
     reached = reach_along_tool_axis(
         kitchen, world_from_tool, problem.approach_checker, problem.clear_checker, rng, parameters
@@ -66,14 +70,12 @@ def _segments_for_grasp(
     if not _holding_checker(kitchen, problem.box, q_grasp, grasp.width).is_valid(lift_path).all():
         return None
     close_qs, close_widths = hold_still(q_grasp, (problem.open_width, grasp.width))
-    touch = (problem.finger_contact,)
-    return (
-        Segment(
-            "approach", approach_path, np.full(len(approach_path), problem.open_width), allowed_contacts=touch
-        ),
-        Segment("close", close_qs, close_widths, allowed_contacts=touch),
-        Segment("lift", lift_path, np.full(len(lift_path), grasp.width), attached_box=problem.box),
+    segments = (
+        Segment("approach", approach_path, np.full(len(approach_path), problem.open_width)),
+        Segment("close", close_qs, close_widths),
+        Segment("lift", lift_path, np.full(len(lift_path), grasp.width)),
     )
+    return None if first_problem(kitchen, action_text(action), action[1], segments) else segments
 
 
 def sample_pick(
@@ -118,7 +120,7 @@ def sample_pick(
         grasp = sample_box_grasp(size, world_from_box, rng, max_width, parameters)
         if grasp is None:
             raise SkillFailure(text, f"{box} is wider than the gripper on every side")
-        segments = _segments_for_grasp(kitchen, problem, grasp, rng, parameters)
+        segments = _segments_for_grasp(kitchen, action, problem, grasp, rng, parameters)
         if segments is not None:
             return SkillTargets(
                 action=action,

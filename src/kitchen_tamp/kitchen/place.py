@@ -7,13 +7,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.kitchen.action_replay import first_problem
 from kitchen_tamp.kitchen.errors import SkillFailure
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.parameters import SkillParameters
 from kitchen_tamp.kitchen.placements import Placement, down_face, face_along, sample_placement
 from kitchen_tamp.kitchen.regions import SupportRegion
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.straight_moves import hold_still, straight_approach, straight_move
-from kitchen_tamp.kitchen.targets import Segment, SkillTargets, action_text
+from kitchen_tamp.kitchen.targets import SkillTargets, action_text
 from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
@@ -49,6 +51,7 @@ def _released_checkers(
 
 def _segments_for_placement(
     kitchen: KitchenScene,
+    action: tuple[str, tuple[str, ...]],
     problem: PlaceProblem,
     placement: Placement,
     rng: np.random.Generator,
@@ -80,12 +83,12 @@ def _segments_for_placement(
     if not touching.is_valid(retreat).all() or not clear.is_valid(retreat[-1])[0]:
         return None
     release_qs, release_widths = hold_still(q_place, (problem.width, problem.open_width))
-    touch = (kitchen.finger_contact(problem.box),)
-    return (
-        Segment("descend", descent, np.full(len(descent), problem.width), attached_box=problem.box),
-        Segment("release", release_qs, release_widths, allowed_contacts=touch),
-        Segment("retreat", retreat, np.full(len(retreat), problem.open_width), allowed_contacts=touch),
+    segments = (
+        Segment("descend", descent, np.full(len(descent), problem.width)),
+        Segment("release", release_qs, release_widths),
+        Segment("retreat", retreat, np.full(len(retreat), problem.open_width)),
     )
+    return None if first_problem(kitchen, action_text(action), action[1], segments) else segments
 
 
 def sample_place(
@@ -135,7 +138,7 @@ def sample_place(
         placement = sample_placement(problem.region, size, rng, preferred)
         if placement is None:
             continue
-        segments = _segments_for_placement(kitchen, problem, placement, rng, parameters)
+        segments = _segments_for_placement(kitchen, action, problem, placement, rng, parameters)
         if segments is not None:
             return SkillTargets(
                 action=action,

@@ -8,7 +8,7 @@ import numpy as np
 
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.skills import GroundedAction, sample_action_targets
-from kitchen_tamp.kitchen.targets import SkillTargets, enter_segment, set_waypoint
+from kitchen_tamp.kitchen.targets import SkillTargets
 from kitchen_tamp.world import CameraView, Image, render
 
 
@@ -54,8 +54,8 @@ def render_skill_frames(
         with kitchen.scene.preserved():
             kitchen.robot.set_configuration(targets.goal_configuration)
             first = targets.segments[0]
-            enter_segment(kitchen, first)
-            set_waypoint(kitchen, first, len(first) - 1)
+            kitchen.robot.set_gripper_width(float(first.gripper_widths[-1]))
+            kitchen.robot.set_configuration(first.configurations[-1])
             frames.append(SkillFrame(targets.action_text, render(kitchen.scene, camera)))
         targets.apply(kitchen)
     return frames

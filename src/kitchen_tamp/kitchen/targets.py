@@ -1,5 +1,6 @@
-"""What a skill hands to motion planning and replay: a free-space goal, then scripted
-segments with explicit joint waypoints, and how the action changes the scene."""
+"""What a skill hands to motion planning: a free-space goal, then scripted segments with
+explicit joint waypoints and gripper widths (what they do to the scene is derived by
+``action_replay``)."""
 
 from __future__ import annotations
 
@@ -7,40 +8,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kitchen_tamp.kitchen.action_replay import replay_action
 from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.world import AllowedContact, FloatArray, PyBulletCollisionChecker
-
-
-@dataclass(frozen=True, eq=False)
-class Segment:
-    """A scripted motion: joint waypoints with the gripper width (and drawer) at each.
-
-    ``attached_box`` is carried by the hand for the whole segment: a replayer
-    attaches it at the first waypoint (or releases what the hand holds if None)
-    before moving. ``drawer_values`` is given when ``openable`` moves with the hand.
-    """
-
-    name: str
-    configurations: FloatArray
-    gripper_widths: FloatArray
-    attached_box: str | None = None
-    openable: str | None = None
-    drawer_values: FloatArray | None = None
-    allowed_contacts: tuple[AllowedContact, ...] = ()
-
-    def __post_init__(self) -> None:
-        n = len(self.configurations)
-        if self.configurations.ndim != 2 or n < 2:
-            raise ValueError(f"segment {self.name!r} needs at least two waypoints as an (n, dof) array")
-        if self.gripper_widths.shape != (n,):
-            raise ValueError(f"segment {self.name!r}: one gripper width per waypoint expected")
-        if (self.drawer_values is None) != (self.openable is None):
-            raise ValueError(f"segment {self.name!r}: drawer values need the openable's name")
-        if self.drawer_values is not None and self.drawer_values.shape != (n,):
-            raise ValueError(f"segment {self.name!r}: one drawer value per waypoint expected")
-
-    def __len__(self) -> int:
-        return len(self.configurations)
+from kitchen_tamp.kitchen.segment import Segment
+from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,48 +47,15 @@ class SkillTargets:
         return np.asarray(self.segments[-1].configurations[-1])
 
     @property
-    def final_held_box(self) -> str | None:
-        """What the hand carries after the action."""
-        return self.segments[-1].attached_box
-
-    @property
     def action_text(self) -> str:
         """The action as PDDL text, e.g. ``(pickUp spam countertop)``."""
         return action_text(self.action)
 
     def apply(self, kitchen: KitchenScene) -> None:
-        """Put the scene in the state after the action (arm, gripper, boxes, drawer)."""
+        """Put the scene in the state the segments lead to from the free-space goal, as the
+        judge derives it (arm, gripper, what the hand holds, the drawer)."""
         kitchen.robot.set_configuration(self.goal_configuration)
-        for segment in self.segments:
-            enter_segment(kitchen, segment)
-            set_waypoint(kitchen, segment, len(segment) - 1)
-
-
-def enter_segment(kitchen: KitchenScene, segment: Segment) -> None:
-    """Go to the segment's first waypoint and make the hand carry ``segment.attached_box``."""
-    set_waypoint(kitchen, segment, 0)
-    held = kitchen.held_box()
-    if held != segment.attached_box:
-        if held is not None:
-            kitchen.release(held)
-        if segment.attached_box is not None:
-            kitchen.scene.detach(kitchen.box(segment.attached_box))
-            kitchen.grasp(segment.attached_box)
-
-
-def set_waypoint(kitchen: KitchenScene, segment: Segment, index: int, fraction: float = 0.0) -> None:
-    """Arm, gripper and drawer at waypoint ``index`` of ``segment``, or ``fraction`` of the way
-    from it to the next waypoint (carried boxes follow)."""
-
-    def at(values: FloatArray) -> FloatArray:
-        if fraction == 0.0:
-            return np.asarray(values[index])
-        return np.asarray(values[index] + fraction * (values[index + 1] - values[index]))
-
-    if segment.openable is not None and segment.drawer_values is not None:
-        kitchen.set_opening(segment.openable, float(at(segment.drawer_values)))
-    kitchen.robot.set_gripper_width(float(at(segment.gripper_widths)))
-    kitchen.robot.set_configuration(at(segment.configurations))
+        replay_action(kitchen, self.action_text, self.action[1], self.segments, measure=False)
 
 
 def action_text(action: tuple[str, tuple[str, ...]]) -> str:

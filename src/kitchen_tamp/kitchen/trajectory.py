@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kitchen_tamp.kitchen.targets import Segment
+from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.world import FloatArray
 
 FREE_SPACE_SEGMENT = "move"

@@ -8,10 +8,11 @@ their parent link (a carried box follows the hand), and every joint but the
 arm's held where the description has it (the drawer, the fingers). Only the
 arm's joints change between queries.
 
-Collision filters leave exactly the pairs the PyBullet `CollisionChecker`
-checks: links moved by the arm against every other body (less the allowed
-contacts), carried bodies against every other body and the robot's non-gripper
-links, and robot links with at least two movable joints between them.
+Collision filters leave exactly the pairs the description lists
+(``checked_pairs``: the pair policy that ``kitchen_tamp.world.checked_pairs``
+decides for every collision model, read here as plain names), and a pair listed
+with an allowance (an intended contact) collides only when it penetrates deeper
+than that (a margin does not apply to it).
 
 How answers differ from PyBullet's. Both collide the Panda's .obj meshes as
 their convex hulls (Drake for a `Mesh` in point-contact and signed-distance
@@ -82,10 +83,19 @@ class DescribedAttachment(Protocol):
     def parent_link_from_child(self) -> FloatArray: ...
 
 
-class DescribedContact(Protocol):
-    """An allowed contact (see `kitchen_tamp.world.AllowedContact`)."""
+class DescribedPair(Protocol):
+    """A checked link pair (see `kitchen_tamp.world.checked_pairs.CheckedLinkPair`)."""
 
-    def allows(self, robot_link: str, body: str, link: str) -> bool: ...
+    @property
+    def body_a(self) -> str: ...
+    @property
+    def link_a(self) -> str: ...
+    @property
+    def body_b(self) -> str: ...
+    @property
+    def link_b(self) -> str: ...
+    @property
+    def allowance(self) -> float: ...
 
 
 class DescribedScene(Protocol):
@@ -106,7 +116,7 @@ class DescribedScene(Protocol):
     @property
     def gripper_links(self) -> frozenset[str]: ...
     @property
-    def allowed_contacts(self) -> Sequence[DescribedContact]: ...
+    def checked_pairs(self) -> Sequence[DescribedPair]: ...
 
 
 @contextmanager
@@ -135,30 +145,6 @@ def _add_model(plant: MultibodyPlant, body: DescribedBody) -> ModelInstanceIndex
             parser.package_map().Add(package, path.parent / package)
     (instance,) = parser.AddModels(path)
     return instance
-
-
-class _Kinematics:
-    """Parent links and joint mobility of a finalized plant, for choosing the checked pairs."""
-
-    def __init__(self, plant: MultibodyPlant) -> None:
-        self.parent: dict[BodyIndex, tuple[BodyIndex, bool]] = {}
-        for index in plant.GetJointIndices():
-            joint: Any = plant.get_joint(index)
-            self.parent[joint.child_body().index()] = (joint.parent_body().index(), joint.num_positions() > 0)
-
-    def ancestry(self, body: BodyIndex) -> list[tuple[BodyIndex, bool]]:
-        """(body, whether its joint to the parent moves) from ``body`` up to the world."""
-        chain = []
-        while body in self.parent:
-            parent, movable = self.parent[body]
-            chain.append((body, movable))
-            body = parent
-        return chain
-
-    def movable_joints_between(self, a: BodyIndex, b: BodyIndex) -> int:
-        chain_a, chain_b = self.ancestry(a), self.ancestry(b)
-        shared = {body for body, _ in chain_a} & {body for body, _ in chain_b}
-        return sum(movable for body, movable in chain_a + chain_b if body not in shared)
 
 
 class DrakeCollisionChecker:
@@ -191,6 +177,10 @@ class DrakeCollisionChecker:
             self._instances = {body.name: _add_model(plant, body) for body in scene.bodies}
         self._weld(scene)
         plant.Finalize()
+        self._allowances: dict[tuple[Any, Any], float] = {}
+        """(geometry, geometry) -> depth (m) the pair may penetrate, both orders, intended contacts only."""
+        self.contact_pairs: dict[frozenset[str], float] = {}
+        """Pairs (as ``model/link`` names) that may touch down to the given depth (m)."""
         self.checked_pairs = self._filter_unchecked_pairs(scene, scene_graph)
         """Pairs of bodies with collision geometry (as ``model/link`` names) that are checked."""
         self._diagram = builder.Build()
@@ -247,38 +237,15 @@ class DrakeCollisionChecker:
         instance = self.plant.get_body(body).model_instance()
         return next(name for name, index in self._instances.items() if index == instance)
 
-    def _checked_pairs(self, scene: DescribedScene) -> set[frozenset[BodyIndex]]:
-        """The pairs the PyBullet checker checks, as Drake bodies."""
-        plant = self.plant
-        kinematics = _Kinematics(plant)
-        robot_instance = self._instances[scene.robot]
-        robot = set(plant.GetBodyIndices(robot_instance))
-        arm_root = plant.GetJointByName(scene.arm_joints[0], robot_instance).child_body().index()
-        moving = {b for b in robot if any(link == arm_root for link, _ in kinematics.ancestry(b))}
-        carried_names = {a.child for a in scene.attachments if a.parent == scene.robot}
-        carried = {b for name in carried_names for b in plant.GetBodyIndices(self._instances[name])}
-        obstacles = {
-            b
-            for name, i in self._instances.items()
-            if name != scene.robot and name not in carried_names
-            for b in plant.GetBodyIndices(i)
-        }
-        gripper = {b for b in robot if plant.get_body(b).name() in scene.gripper_links}
-        checked = {
-            frozenset((r, o))
-            for r in moving
-            for o in obstacles
-            if not any(
-                c.allows(plant.get_body(r).name(), self._model_of(o), plant.get_body(o).name())
-                for c in scene.allowed_contacts
-            )
-        }
-        checked |= {frozenset((c, o)) for c in carried for o in obstacles | (robot - gripper)}
-        checked |= {
-            frozenset((a, b))
-            for a, b in itertools.combinations(sorted(robot), 2)
-            if kinematics.movable_joints_between(a, b) >= 2
-        }
+    def _checked_pairs(self, scene: DescribedScene) -> dict[frozenset[BodyIndex], float]:
+        """The described pairs as Drake bodies, each with its allowance (m)."""
+        plant, instances = self.plant, self._instances
+        checked: dict[frozenset[BodyIndex], float] = {}
+        for pair in scene.checked_pairs:
+            a = plant.GetBodyByName(pair.link_a, instances[pair.body_a]).index()
+            b = plant.GetBodyByName(pair.link_b, instances[pair.body_b]).index()
+            key = frozenset((a, b))
+            checked[key] = max(checked.get(key, 0.0), float(pair.allowance))
         return checked
 
     def _filter_unchecked_pairs(
@@ -295,10 +262,15 @@ class DrakeCollisionChecker:
         declaration = CollisionFilterDeclaration()
         kept = []
         for (a, geometries_a), (b, geometries_b) in itertools.combinations(shaped, 2):
-            if frozenset((a, b)) in checked:
-                kept.append(frozenset((self._scoped(a), self._scoped(b))))
-            else:
+            key = frozenset((a, b))
+            if key not in checked:
                 declaration.ExcludeBetween(GeometrySet(geometries_a), GeometrySet(geometries_b))
+            else:
+                kept.append(frozenset((self._scoped(a), self._scoped(b))))
+                if checked[key] > 0.0:
+                    self.contact_pairs[kept[-1]] = checked[key]
+                    for first, second in itertools.product(geometries_a, geometries_b):
+                        self._allowances[first, second] = self._allowances[second, first] = checked[key]
         scene_graph.collision_filter_manager().Apply(declaration)
         return frozenset(kept)
 
@@ -309,8 +281,24 @@ class DrakeCollisionChecker:
         self.plant.SetPositions(self._context, self._positions)
         return self._query_port.Eval(self._context)
 
+    def _allowance(self, pair: Any) -> float:
+        """The depth (m) a pair of geometries (a distance or penetration result) may penetrate."""
+        return self._allowances.get((pair.id_A, pair.id_B), 0.0) if self._allowances else 0.0
+
     def _collides(self, q: JointConfiguration) -> bool:
         query = self._query_at(q)
+        # an intended contact may touch to its allowance, whatever the margin
+        if self._allowances and self.margin > 0.0:
+            pairs = query.ComputeSignedDistancePairwiseClosestPoints(self.margin)
+            return any(
+                pair.distance < (-allowance if (allowance := self._allowance(pair)) > 0.0 else self.margin)
+                for pair in pairs
+            )
+        if self._allowances:
+            return any(
+                pair.depth > (allowance if (allowance := self._allowance(pair)) > 0.0 else -self.margin)
+                for pair in query.ComputePointPairPenetration()
+            )
         if self.margin > 0.0:
             pairs = query.ComputeSignedDistancePairwiseClosestPoints(self.margin)
             return any(pair.distance < self.margin for pair in pairs)
@@ -330,26 +318,32 @@ class DrakeCollisionChecker:
         """Whether the straight segment is valid, checked at the checker's resolution."""
         return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
 
-    def _closest_pair(self, q: JointConfiguration) -> Any | None:
+    def _closest_pair(self, q: JointConfiguration) -> tuple[Any, float] | None:
+        """The pair nearest to colliding and its distance plus allowance, or None."""
         pairs = self._query_at(q).ComputeSignedDistancePairwiseClosestPoints(self.distance_horizon)
-        return min(pairs, key=lambda pair: pair.distance, default=None)
+        measured = [(pair, float(pair.distance), self._allowance(pair)) for pair in pairs]
+        # an intended contact counts only when deeper than allowed, from its allowed depth
+        counted = [(pair, d + a) for pair, d, a in measured if a == 0.0 or d + a < 0.0]
+        return min(counted, key=lambda item: item[1], default=None)
 
     def min_distance(self, q: JointConfiguration) -> float:
-        """Smallest signed distance (m, negative when penetrating) over the checked pairs,
-        capped at ``distance_horizon``."""
-        pair = self._closest_pair(np.asarray(q, dtype=float))
-        return self.distance_horizon if pair is None else min(float(pair.distance), self.distance_horizon)
+        """Smallest signed distance (m, negative when penetrating; an intended contact counted
+        only when deeper than allowed, from its allowed depth) over the checked pairs, capped
+        at ``distance_horizon``."""
+        closest = self._closest_pair(np.asarray(q, dtype=float))
+        return self.distance_horizon if closest is None else min(closest[1], self.distance_horizon)
 
     def signed_distance(self, q: JointConfiguration) -> tuple[float, JointConfiguration]:
         """(``min_distance(q)``, its gradient with respect to the arm joints); the gradient is
         zero beyond the horizon. A `SignedDistanceFunction` for trajectory optimisation."""
-        pair = self._closest_pair(np.asarray(q, dtype=float))
-        if pair is None or pair.distance >= self.distance_horizon:
+        closest = self._closest_pair(np.asarray(q, dtype=float))
+        if closest is None or closest[1] >= self.distance_horizon:
             return self.distance_horizon, np.zeros(len(self._arm_slots))
+        pair, distance = closest
         velocity_of = self._witness_jacobian
         jacobian = velocity_of(pair.id_A, pair.p_ACa) - velocity_of(pair.id_B, pair.p_BCb)
         gradient = np.asarray(pair.nhat_BA_W, dtype=float) @ jacobian[:, self._arm_slots]
-        return float(pair.distance), np.asarray(gradient, dtype=float)
+        return distance, np.asarray(gradient, dtype=float)
 
     def _witness_jacobian(self, geometry: Any, p_GC: FloatArray) -> FloatArray:
         """(3, nq) velocity Jacobian of a witness point fixed on a geometry's body."""

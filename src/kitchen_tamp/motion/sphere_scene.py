@@ -238,12 +238,16 @@ class SphereScene:
     def _checked_pairs(self, scene: DescribedScene) -> tuple[IndexArray, IndexArray]:
         """(group, box) pairs and (group, group) pairs that are checked."""
         tree_model = self.tree.model
+        # The robot's side of the described pair table (kitchen_tamp.world.checked_pairs); an
+        # intended contact's pair is kept too (spheres then defer it to the exact model).
+        pairs = scene.checked_pairs
+        robot_pairs = {(p.link_a, p.body_b, p.link_b) for p in pairs if p.body_a == scene.robot}
+        robot_pairs |= {(p.link_b, p.body_a, p.link_a) for p in pairs if p.body_b == scene.robot}
         box_pairs, group_pairs = [], []
         for g, group in enumerate(self.groups):
             for b, (body, link) in enumerate(self.boxes.owners):
                 if group.role == "carried" or (
-                    group.role == "moving"
-                    and not any(c.allows(group.link, body, link) for c in scene.allowed_contacts)
+                    group.role == "moving" and (group.link, body, link) in robot_pairs
                 ):
                     box_pairs.append((g, b))
             for h in range(g + 1, len(self.groups)):

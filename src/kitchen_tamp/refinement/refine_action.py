@@ -1,5 +1,8 @@
 """Refine one action in the kitchen: its skill gives targets, a motion back end connects
-the arm to them, and the scene advances to the action's outcome.
+the arm to them, the judge's replay of the whole action (``kitchen.replay_action``, at
+the judge's resolution with its contact policy) must find nothing, and the scene
+advances to the outcome that replay derives -- so an accepted step is one the judge
+accepts, and a step it would reject is a failed sample.
 
 This is one sample of the kitchen's trajectory sampler; ``kitchen_sesame``
 decides which action to sample next, how often, and when to step back.
@@ -13,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, sample_action_targets
+from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, replay_action, sample_action_targets
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
@@ -102,39 +105,29 @@ def refine_action(
     solution = backend.solve(start, targets.goal_configuration, checker, targets.free_space_checker, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
     seconds = {"skills_s": skills_s, "motion_s": solution.seconds, **solution.timings}
-    if solution.path is None:
-        rejection = f"no {backend.name} path to the targets of sample 1: {solution.status}"
-        record = ActionSampleRecord(
+
+    def record(trajectory: ActionTrajectory | None, rejection: str | None) -> ActionSampleRecord:
+        return ActionSampleRecord(
             index=index,
             action=action.text,
             planner=backend.name,
-            solved=False,
+            solved=trajectory is not None,
             skill_samples=targets.samples_tried,
             motion_attempts=solution.attempts,
             motion=motion,
-            waypoints=0,
-            rejections=(rejection,),
+            waypoints=0 if trajectory is None else trajectory.waypoint_count,
+            rejections=() if rejection is None else (rejection,),
             seconds=seconds,
         )
-        return None, record
-    move = Segment(
-        FREE_SPACE_SEGMENT,
-        solution.path,
-        np.full(len(solution.path), targets.gripper_width),
-        attached_box=targets.held_box,
-    )
+
+    if solution.path is None:
+        return None, record(None, f"no {backend.name} path to the targets of sample 1: {solution.status}")
+    move = Segment(FREE_SPACE_SEGMENT, solution.path, np.full(len(solution.path), targets.gripper_width))
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
-    targets.apply(kitchen)
-    record = ActionSampleRecord(
-        index=index,
-        action=action.text,
-        planner=backend.name,
-        solved=True,
-        skill_samples=targets.samples_tried,
-        motion_attempts=solution.attempts,
-        motion=motion,
-        waypoints=trajectory.waypoint_count,
-        rejections=(),
-        seconds=seconds,
-    )
-    return trajectory, record
+    before, clock = kitchen.scene.save_state(), time.perf_counter()
+    judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False)
+    seconds["judge_replay_s"] = time.perf_counter() - clock
+    if judged.problems:
+        kitchen.scene.restore_state(before)
+        return None, record(None, f"the judge's replay of sample 1 rejects it: {judged.problems[0]}")
+    return trajectory, record(trajectory, None)

@@ -9,7 +9,10 @@ found it.
 
 Which link pairs are checked, and which of them are measured at a
 configuration (an axis-aligned-bounds broadphase, most overlapping first), is
-``checked_pairs``. Here, per configuration, the arm is reset, the pairs the
+``checked_pairs``; an intended contact is a pair that may touch down to its
+bound, so every distance here is a pair's distance plus its allowance (negative
+means deeper than allowed). While a drawer moves (``is_valid_along``), the boxes
+riding in it are checked against the cabinet too. Here, per configuration, the arm is reset, the pairs the
 broadphase hands over go to ``getClosestPoints``, stopping at the first
 collision, and the scene is saved and restored as raw PyBullet values rather
 than ``Pose`` objects: tens of microseconds per configuration.
@@ -28,7 +31,7 @@ from numpy.typing import NDArray
 from kitchen_tamp.joint_spacing import interior_fractions
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body
-from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedPairs
+from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedLinkPair, CheckedPairs
 from kitchen_tamp.world.checked_pairs import AllowedContact as AllowedContact
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
@@ -128,8 +131,17 @@ class PyBulletCollisionChecker:
         self._carried_slots = tuple(self._bodies.index(a.child) for a in self.carried)
         self._checked = CheckedPairs(robot, self.obstacles, self.carried, self.allowed)
         self._pairs = self._checked.pairs
-        self._pair_ids = self._checked.pair_ids
         self._static_bounds = self._checked.static_bounds()
+        riding = tuple(
+            a for a in scene.attachments if a.parent is not robot.body and a.child in self.obstacles
+        )
+        self._checked_along = self._checked
+        if riding:
+            self._checked_along = CheckedPairs(robot, self.obstacles, self.carried, self.allowed, riding)
+
+    def policy(self) -> tuple[CheckedLinkPair, ...]:
+        """The pairs this checker checks with the arm alone moving, as plain data."""
+        return self._checked.policy()
 
     # -- scene state ------------------------------------------------------------------------------
     def _read_state(self) -> tuple[RawBodyState, ...]:
@@ -190,29 +202,39 @@ class PyBulletCollisionChecker:
             placement.apply()
         return static_bounds if along is None else self._checked.static_bounds()
 
-    def _distances(self, horizon: float, static_bounds: FloatArray) -> Iterator[float]:
-        """Signed distances (within ``horizon``) of the checked pairs at the current state."""
-        client = self._client
-        for k, _ in self._checked.candidates(horizon, static_bounds):
-            uid_a, link_a, uid_b, link_b = self._pair_ids[k]
+    def _distances(
+        self, checked: CheckedPairs, horizon: float, static_bounds: FloatArray
+    ) -> Iterator[tuple[int, float]]:
+        """(pair, how far it is from colliding) for the checked pairs within ``horizon`` at the
+        current state: a pair's distance less the margin, or for an intended contact its
+        distance plus its allowance (the margin does not apply to what is meant to touch)."""
+        client, ids, allowances = self._client, checked.pair_ids, checked.allowances
+        for k, _ in checked.candidates(horizon, static_bounds):
+            uid_a, link_a, uid_b, link_b = ids[k]
+            allowance = float(allowances[k])
+            offset = allowance if allowance > 0.0 else -self.margin
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
-                yield float(point[8])
+                yield k, float(point[8]) + offset
 
-    def _collides_here(self, static_bounds: FloatArray) -> bool:
-        return any(d < self.margin for d in self._distances(max(self.margin, 0.0), static_bounds))
+    def _collides_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> bool:
+        horizon = max(self.margin, 0.0)
+        return any(d < 0.0 for _, d in self._distances(checked, horizon, static_bounds))
 
-    def _clearance_here(self, static_bounds: FloatArray) -> float:
+    def _clearance_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> float:
         """Smallest distance up to the horizon: pairs in order of their bounds' gap until the
         gap alone rules a pair out. (Each pair is asked up to the full horizon: a smaller
         threshold changes PyBullet's depth estimates of deep penetrations.)"""
         horizon, client = CLEARANCE_HORIZON, self._client
         best = horizon
-        for k, gap in self._checked.candidates(horizon, static_bounds):
+        for k, gap in checked.candidates(horizon, static_bounds):
             if gap > best + BOUNDS_SLACK:
                 break
-            uid_a, link_a, uid_b, link_b = self._pair_ids[k]
+            uid_a, link_a, uid_b, link_b = checked.pair_ids[k]
+            allowance = float(checked.allowances[k])
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
-                best = min(best, float(point[8]))
+                distance = float(point[8]) + allowance
+                if allowance == 0.0 or distance < 0.0:  # an intended contact counts only when too deep
+                    best = min(best, distance)
         return best
 
     # -- batches -----------------------------------------------------------------------------------
@@ -224,16 +246,20 @@ class PyBulletCollisionChecker:
         valid = np.asarray(((batch >= self._limits[0]) & (batch <= self._limits[1])).all(axis=1))
         if not valid.any() or (stop_at_invalid and not valid.all()):
             return valid
+        checked = self._checked if along is None else self._checked_along
         with self._in_snapshot(only_arm_moves=along is None):
             for i in np.flatnonzero(valid).tolist():
-                valid[i] = not self._collides_here(self._place(batch[i], along, i))
+                valid[i] = not self._collides_here(checked, self._place(batch[i], along, i))
                 if stop_at_invalid and not valid[i]:
                     break
         return valid
 
     def _clearances(self, batch: FloatArray, along: Along | None = None) -> FloatArray:
+        checked = self._checked if along is None else self._checked_along
         with self._in_snapshot(only_arm_moves=along is None):
-            return np.array([self._clearance_here(self._place(q, along, i)) for i, q in enumerate(batch)])
+            return np.array(
+                [self._clearance_here(checked, self._place(q, along, i)) for i, q in enumerate(batch)]
+            )
 
     # -- public batch interface ------------------------------------------------------------------
     def is_valid(self, qs: FloatArray) -> BoolArray:
@@ -271,7 +297,8 @@ class PyBulletCollisionChecker:
 
     def min_clearance(self, qs: FloatArray) -> FloatArray:
         """Smallest signed distance (m, negative when penetrating) per configuration,
-        capped at ``CLEARANCE_HORIZON``; allowed contacts are left out."""
+        capped at ``CLEARANCE_HORIZON``; an intended contact counts only when deeper than
+        allowed, from its allowed depth."""
         return self._clearances(np.atleast_2d(np.asarray(qs, dtype=float)))
 
     def min_clearance_along(
@@ -282,21 +309,25 @@ class PyBulletCollisionChecker:
         values = np.asarray(joint_values, dtype=float).reshape(len(batch), -1)
         return self._clearances(batch, (body, joint_names, values))
 
-    def colliding_pairs(self, q: FloatArray) -> list[tuple[str, str]]:
-        """Names of the pairs closer than the margin at ``q`` (for error messages)."""
+    def colliding_pairs(
+        self, q: FloatArray, along: tuple[Body, Sequence[str], FloatArray] | None = None
+    ) -> list[tuple[str, str]]:
+        """Names of the pairs closer than the margin (intended contacts: deeper than their
+        allowance) at ``q``, with
+        ``along``'s joints at the given values (for error messages)."""
         horizon, names = max(self.margin, 0.0), []
-        with self._in_snapshot(only_arm_moves=True):
-            static_bounds = self._place(np.asarray(q, dtype=float))
-            for k, _ in self._checked.candidates(horizon, static_bounds):
-                uid_a, link_a, uid_b, link_b = self._pair_ids[k]
-                points = p.getClosestPoints(
-                    uid_a, uid_b, horizon, link_a, link_b, physicsClientId=self._client
-                )
-                if any(point[8] < self.margin for point in points):
-                    body_a, _, body_b, _ = self._pairs[k]
-                    first = body_a.link_name(link_a) if body_a is self.robot.body else body_a.name
-                    second = body_b.link_name(link_b)
-                    names.append((first, second) if body_a is body_b else (first, f"{body_b.name}/{second}"))
+        checked = self._checked if along is None else self._checked_along
+        moved = None
+        if along is not None:
+            moved = (along[0], along[1], np.atleast_2d(np.asarray(along[2], dtype=float)))
+        with self._in_snapshot(only_arm_moves=along is None):
+            static_bounds = self._place(np.asarray(q, dtype=float), moved)
+            colliding = {k for k, d in self._distances(checked, horizon, static_bounds) if d < 0.0}
+            for k in sorted(colliding):
+                body_a, link_a, body_b, link_b = checked.pairs[k]
+                first = body_a.link_name(link_a) if body_a is self.robot.body else body_a.name
+                second = body_b.link_name(link_b)
+                names.append((first, second) if body_a is body_b else (first, f"{body_b.name}/{second}"))
         return sorted(set(names))
 
 

@@ -2,9 +2,11 @@
 
 ``describe_scene`` records, for every body, the URDF it was loaded from, where
 its base is and where its movable joints are; which bodies ride on which links
-and how; the robot's arm joints, limits and gripper links; and the contacts a
-collision check allows. ``describe_collision_checker`` does the same for the
-scene as a ``PyBulletCollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
+and how; the robot's arm joints, limits and gripper links; and the link pairs a
+collision check checks, each with the depth it may touch (the pair policy of
+``checked_pairs``, decided there once for every collision model).
+``describe_collision_checker`` does the same for the scene as a
+``PyBulletCollisionChecker`` captured it. Poses are 4x4 homogeneous matrices
 (``a_from_b`` maps b-coordinates to a), frames are URDF link frames.
 
 Each body's URDF is the file the ``Scene`` loaded it from, unless the caller
@@ -21,6 +23,7 @@ from types import MappingProxyType
 import numpy as np
 
 from kitchen_tamp.world.attachment import Attachment
+from kitchen_tamp.world.checked_pairs import CheckedLinkPair, CheckedPairs
 from kitchen_tamp.world.collision import AllowedContact, PyBulletCollisionChecker
 from kitchen_tamp.world.errors import UnknownNameError
 from kitchen_tamp.world.robot import Robot
@@ -61,10 +64,9 @@ class AttachmentDescription:
 class SceneDescription:
     """Everything a collision model needs to rebuild a scene snapshot and check the arm in it.
 
-    Checked, as by ``PyBulletCollisionChecker``: the robot's links moved by the arm
-    against every other body (except ``allowed_contacts``); bodies attached to
-    the robot against every other body and the robot's links outside
-    ``gripper_links``; robot links with at least two movable joints between them.
+    ``checked_pairs`` are exactly the pairs ``PyBulletCollisionChecker`` checks
+    (see ``kitchen_tamp.world.checked_pairs``), each with the penetration it may
+    reach (an intended contact's bound; 0 for the rest).
     """
 
     bodies: tuple[BodyDescription, ...]
@@ -74,7 +76,7 @@ class SceneDescription:
     arm_lower: FloatArray
     arm_upper: FloatArray
     gripper_links: frozenset[str]
-    allowed_contacts: tuple[AllowedContact, ...]
+    checked_pairs: tuple[CheckedLinkPair, ...]
 
     def body(self, name: str) -> BodyDescription:
         """The body called ``name``."""
@@ -123,12 +125,16 @@ def describe_scene(
                 joint_positions=MappingProxyType(dict(zip(names, map(float, values), strict=True))),
             )
         )
+    attached = scene.attachments if attachments is None else tuple(attachments)
     described = tuple(
         AttachmentDescription(
             a.parent.name, a.parent_link, a.child.name, _frozen(a.parent_link_from_child.matrix())
         )
-        for a in (scene.attachments if attachments is None else attachments)
+        for a in attached
     )
+    carried = [a for a in attached if a.parent is robot.body]
+    carried_names = {a.child.name for a in carried}
+    obstacles = [b for b in scene.bodies if b is not robot.body and b.name not in carried_names]
     return SceneDescription(
         bodies=tuple(bodies),
         attachments=described,
@@ -137,13 +143,13 @@ def describe_scene(
         arm_lower=_frozen(robot.lower),
         arm_upper=_frozen(robot.upper),
         gripper_links=robot.gripper_links,
-        allowed_contacts=tuple(allowed),
+        checked_pairs=CheckedPairs(robot, obstacles, carried, allowed).policy(),
     )
 
 
 def describe_collision_checker(
     checker: PyBulletCollisionChecker, urdf_paths: Mapping[str, Path | str] | None = None
 ) -> SceneDescription:
-    """The scene as ``checker`` captured it, with its allowed contacts (the scene is left as it is)."""
+    """The scene as ``checker`` captured it, with its pairs (the scene is left as it is)."""
     with checker.captured_scene() as attachments:
         return describe_scene(checker.scene, checker.robot, urdf_paths, checker.allowed, attachments)
