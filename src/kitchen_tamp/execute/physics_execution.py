@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kitchen_tamp.execute.atom_comparison import all_hold, atoms_text, goal_literals, state_mismatch
 from kitchen_tamp.execute.physics_plan import PlannedOutcome, planned_outcomes
 from kitchen_tamp.execute.physics_replanning import Replanner, replan_rest
 from kitchen_tamp.execute.physics_time_law import DEFAULT_TIME_LAW, TimeLaw, strokes
@@ -26,7 +27,7 @@ from kitchen_tamp.execute.run_report import RunReport
 from kitchen_tamp.execute.verification import parse_action
 from kitchen_tamp.kitchen import KitchenMap, KitchenScene, abstract_state, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
-from kitchen_tamp.planning import Atom, Task, atom_text
+from kitchen_tamp.planning import Atom, Task
 from kitchen_tamp.world import Pose
 from kitchen_tamp.world.physics import DEFAULT_PHYSICS, PhysicsSettings, PhysicsWorld
 
@@ -97,7 +98,7 @@ class PhysicsExecution:
 
     @property
     def goal_reached(self) -> bool:
-        return bool(self.goal_atoms) and all(self.goal_atoms.values())
+        return all_hold(self.goal_atoms)
 
     @property
     def verified(self) -> bool:
@@ -149,9 +150,6 @@ def pose_errors(planned: Pose, actual: Pose) -> dict[str, float]:
         "rotation_deg": round(float(np.degrees(rotation)), 3),
     }
 
-
-def _atoms_text(atoms: frozenset[Atom]) -> list[str]:
-    return sorted(atom_text(a) for a in atoms)
 
 
 class _Rollout:
@@ -296,12 +294,10 @@ class _Rollout:
         figures.end_s = self.world.time
         drift: list[str] = []
         observed = self.observed_atoms()
-        figures.as_planned = observed == expected
-        if not figures.as_planned:
-            self.result.problems.append(
-                f"{label}: the scene shows {_atoms_text(observed - expected)} "
-                f"but the plan expects {_atoms_text(expected - observed)}"
-            )
+        mismatch = state_mismatch(observed, expected)
+        figures.as_planned = mismatch is None
+        if mismatch is not None:
+            self.result.problems.append(f"{label}: {mismatch}")
         tolerances = self.result.tolerances
         for box, pose in sorted(planned.box_poses.items()):
             if box == planned.held_box:
@@ -380,11 +376,8 @@ def execute_under_physics(
                     continue
             result.problems.extend(drift)
         final = rollout.observed_atoms()
-        result.final_atoms = _atoms_text(final)
-        result.goal_atoms = {atom_text(a): a in final for a in sorted(task.goal_atoms)}
-        result.goal_atoms.update(
-            {f"(not {atom_text(a)})": a not in final for a in sorted(task.negative_goal_atoms)}
-        )
+        result.final_atoms = atoms_text(final)
+        result.goal_atoms = goal_literals(task, final)
         if result.actions:
             result.final_box_errors = result.actions[-1].box_errors
         result.simulated_s = world.time

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kitchen_tamp.execute.atom_comparison import all_hold, atoms_text, goal_literals, state_mismatch
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.kitchen import (
     CONTACT_PENETRATION_BOUND,
@@ -33,7 +34,7 @@ from kitchen_tamp.kitchen import (
     replay_action,
 )
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
-from kitchen_tamp.planning import Atom, GroundAction, Task, atom_text
+from kitchen_tamp.planning import GroundAction, Task
 
 
 @dataclass
@@ -56,7 +57,7 @@ class Verification:
 
     @property
     def goal_reached(self) -> bool:
-        return bool(self.goal_atoms) and all(self.goal_atoms.values())
+        return all_hold(self.goal_atoms)
 
     @property
     def verified(self) -> bool:
@@ -97,9 +98,6 @@ def parse_action(task: Task, text: str) -> GroundAction | None:
     words = _words(text)
     return task.action_named(words[0], words[1:]) if words else None
 
-
-def _atoms_text(atoms: frozenset[Atom]) -> list[str]:
-    return sorted(atom_text(a) for a in atoms)
 
 
 def verify_trajectory(
@@ -144,16 +142,11 @@ def verify_trajectory(
             result.closest_approach = replay.closest_approach
         observed = abstract_state(kitchen, task.objects)
         expected = task.state_atoms(state)
-        result.steps_as_planned.append(observed == expected)
-        if observed != expected:
-            result.problems.append(
-                f"{label} {step.segments[-1].name} (its last segment): the scene shows "
-                f"{_atoms_text(observed - expected)} but the plan expects {_atoms_text(expected - observed)}"
-            )
+        mismatch = state_mismatch(observed, expected)
+        result.steps_as_planned.append(mismatch is None)
+        if mismatch is not None:
+            result.problems.append(f"{label} {step.segments[-1].name} (its last segment): {mismatch}")
     final = abstract_state(kitchen, task.objects)
-    result.final_atoms = _atoms_text(final)
-    result.goal_atoms = {atom_text(a): a in final for a in sorted(task.goal_atoms)}
-    result.goal_atoms.update(
-        {f"(not {atom_text(a)})": a not in final for a in sorted(task.negative_goal_atoms)}
-    )
+    result.final_atoms = atoms_text(final)
+    result.goal_atoms = goal_literals(task, final)
     return result
