@@ -14,7 +14,7 @@ from pddl.parser.problem import ProblemParser, ProblemTransformer
 
 from kitchen_tamp.planning import grammar_cache
 from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
-from kitchen_tamp.planning.user_cache import cache_directory
+from kitchen_tamp.user_cache import cache_directory
 from tests.planning.conftest import KITCHEN
 
 

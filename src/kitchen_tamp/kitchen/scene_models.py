@@ -19,7 +19,7 @@ from typing import Final
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.kitchen.scene_spec import DrawerSpec, KitchenSpec, Rgba, SurfaceSpec, Vector
-from kitchen_tamp.planning.user_cache import cache_directory
+from kitchen_tamp.user_cache import cache_directory
 
 KITCHEN_FILE: Final = "kitchen.urdf"
 CABINET_LINK: Final = "cabinet"

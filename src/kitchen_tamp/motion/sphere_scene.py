@@ -23,7 +23,6 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -43,6 +42,7 @@ from kitchen_tamp.motion.sphere_covering import (
 )
 from kitchen_tamp.motion.sphere_kinematics import KinematicTree
 from kitchen_tamp.motion.sphere_urdf import UrdfCollision, read_urdf
+from kitchen_tamp.user_cache import cache_directory
 
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
@@ -70,10 +70,9 @@ def shape_polytope(shape: UrdfCollision) -> ConvexPolytope:
 
 
 def sphere_cache_directory() -> Path:
-    """Where generated sphere sets are kept between runs: ``KITCHEN_TAMP_CACHE_DIR`` or
-    ``~/.cache/kitchen_tamp``, under ``spheres/``."""
-    root = os.environ.get("KITCHEN_TAMP_CACHE_DIR") or Path.home() / ".cache" / "kitchen_tamp"
-    return Path(root) / "spheres"
+    """Where generated sphere sets are kept between runs: ``spheres/`` in kitchen_tamp's
+    cache directory (``kitchen_tamp.user_cache``)."""
+    return cache_directory() / "spheres"
 
 
 def _cache_key(shape: UrdfCollision, tolerance: float) -> str:
@@ -94,7 +93,10 @@ def _covered_shape(urdf_path: str, index: int, tolerance: float) -> SphereSet:
     shape = read_urdf(urdf_path).collisions[index]
     if shape.kind == "sphere":
         return SphereSet(shape.origin[:3, 3][None], shape.size[:1].copy())
-    cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance)}.json"
+    try:
+        cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance)}.json"
+    except RuntimeError:  # no home directory: no cache, only time lost
+        return cover_with_spheres(shape_polytope(shape), tolerance)
     try:
         stored = json.loads(cached.read_text())
         return SphereSet(

@@ -36,7 +36,7 @@ from lark.exceptions import VisitError
 from pddl.__version__ import __version__ as pddl_version
 from pddl.parser import GRAMMAR_FILE, PARSERS_DIRECTORY
 
-from kitchen_tamp.planning.user_cache import cache_directory
+from kitchen_tamp.user_cache import cache_directory
 
 T = TypeVar("T")
 

@@ -63,7 +63,7 @@ ENTRY_SUFFIX = ".task"
 
 def task_cache_directory() -> Path:
     """Where the entries live (raises ``RuntimeError`` without a home directory, as ``cache_directory``)."""
-    from kitchen_tamp.planning.user_cache import cache_directory
+    from kitchen_tamp.user_cache import cache_directory
 
     return cache_directory() / "tasks"
 

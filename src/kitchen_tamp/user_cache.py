@@ -1,7 +1,9 @@
-"""Where the planner keeps what it computes once per machine: the user's cache directory.
+"""Where kitchen_tamp keeps what it computes once per machine: the user's cache directory.
 
-Both caches live here: Lark's built parsers (``grammar_cache``) and parsed,
-grounded tasks (``task_cache``). This module imports nothing heavy, so a run
+Every cache lives under it: Lark's built parsers and parsed, grounded tasks
+(``planning.grammar_cache``, ``planning.task_cache``), the models generated from
+scene files (``kitchen.scene_models``) and the sphere sets covering collision
+meshes (``motion.sphere_scene``). This module imports nothing heavy, so a run
 served from the cache pays for neither Lark nor the ``pddl`` package.
 """
 
