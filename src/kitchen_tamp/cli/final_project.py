@@ -383,3 +383,7 @@ def main(argv: Sequence[str] | None = None, started: float | None = None) -> int
     if args.mode == "replay":
         return exit_code_of(lambda: run_replay(args, run_started), _bad_input_line)
     return exit_code_of(lambda: run_plan(args, run_started), _bad_input_line)
+
+
+if __name__ == "__main__":  # python -m kitchen_tamp.cli.final_project (how sweeps run it)
+    sys.exit(main())

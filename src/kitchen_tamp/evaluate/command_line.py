@@ -37,8 +37,8 @@ from kitchen_tamp.evaluate.results_table import RESULTS_FILE, ResultsTableError
 from kitchen_tamp.evaluate.summary import write_summary
 from kitchen_tamp.evaluate.sweep import RUNS_DIR, SweepPlan, run_sweep
 from kitchen_tamp.evaluate.task_run import RunSettings, default_run_command
+from kitchen_tamp.kitchens import default_domain_path, find_problem, kitchen_folder
 from kitchen_tamp.planning import PlanningInputError, load_task
-from kitchen_tamp.planning.pddl_files import PDDL_DIR, resolve_problem_path
 
 DEFAULT_OUT = Path("out") / "evaluate"
 DEFAULT_TIMEOUT_S = 600.0
@@ -58,8 +58,9 @@ def build_parser() -> argparse.ArgumentParser:
                     "on a local pool or on Ray; write results.csv, summary.md and plots.",
     )
     parser.add_argument("--problems", nargs="+", default=[], metavar="FILE",
-                        help="problem files; bare names are also looked up in pddl/ "
-                             "(default: pddl/problem*.pddl unless --random-problems is given)")
+                        help="problem files; bare names are also looked up in the shipped kitchens "
+                             "(default: the default kitchen's problem*.pddl unless --random-problems "
+                             "is given)")
     parser.add_argument("--domain", type=Path, help="domain file (default: domain.pddl beside each problem)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=["rrt"], help="default: rrt")
     parser.add_argument("--seeds", default="0-19", help="seeds, e.g. 0-99 or 0-4,10 (default 0-19)")
@@ -94,7 +95,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _problem_files(names: Sequence[str], domain: Path | None) -> list[Path]:
     problems = []
     for name in names:
-        path = resolve_problem_path(name)
+        path = find_problem(name)
         if not path.is_file():
             raise SweepUsageError(f"problem file not found: {name}")
         load_task(path, domain)  # a malformed problem stops the sweep before it starts
@@ -137,13 +138,13 @@ def plan_sweep(args: argparse.Namespace, argv: Sequence[str]) -> SweepPlan:
         raise SweepUsageError(f"domain file not found: {args.domain}")
     names = args.problems
     if not names and not args.random_problems:
-        names = sorted(str(path) for path in PDDL_DIR.glob("problem*.pddl"))
+        names = sorted(str(path) for path in kitchen_folder().glob("problem*.pddl"))
     problems = _problem_files(names, args.domain)
     seeds = parse_seeds(args.seeds)
     _check_out_dir(args.out, args.resume)
     tasks: list[TaskSpec] = expand_grid(problems, args.modes, seeds)
     if args.random_problems:
-        domain = args.domain or PDDL_DIR / "domain.pddl"
+        domain = args.domain or default_domain_path()
         folder = args.out / RANDOM_PROBLEMS_DIR
         generated = generate_problems(args.random_problems, args.problem_seed, folder, domain)
         write_manifest(folder, generated)

@@ -21,19 +21,20 @@ from pathlib import Path
 from typing import Any
 
 from kitchen_tamp.evaluate.grid import TaskSpec
-from kitchen_tamp.planning.pddl_files import PDDL_DIR
 
 REPORT_FILE = "report.json"
 """Written by ``final_project.py`` into its ``--out`` folder."""
-FINAL_PROJECT_SCRIPT = PDDL_DIR.parent / "final_project.py"
+FINAL_PROJECT_MODULE = "kitchen_tamp.cli.final_project"
+"""The module behind ``final_project.py`` and ``kitchen-tamp``: found wherever the package is installed."""
 STDERR_TAIL_CHARS = 400
 """How much of a crashed run's stderr its result keeps."""
 KILL_GRACE_S = 5.0
 
 
 def default_run_command() -> tuple[str, ...]:
-    """``python final_project.py``: the command a user runs, so every row can be rerun by hand."""
-    return (sys.executable, str(FINAL_PROJECT_SCRIPT))
+    """``python -m kitchen_tamp.cli.final_project`` (what ``final_project.py`` and ``kitchen-tamp``
+    run), so every row can be rerun by hand, from a checkout or from an installed wheel."""
+    return (sys.executable, "-m", FINAL_PROJECT_MODULE)
 
 
 @dataclass(frozen=True)
