@@ -45,7 +45,7 @@ BoolArray = npt.NDArray[np.bool_]
 Validity = Callable[[FloatArray], BoolArray]
 
 
-def drake_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
+def drake_twin(checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
     """The Drake model of the scene ``checker`` captured, with its allowed contacts and margin."""
     description = describe_collision_checker(checker)
     return DrakeCollisionChecker(description, margin=checker.margin)
@@ -174,7 +174,7 @@ def sphere_agreement(kitchen: KitchenScene, samples: int, seed: int) -> None:
             )
     free = scenes["free hand"]
     spheres = SphereCollisionChecker(describe_collision_checker(free))
-    drake = drake_twin(kitchen, free)
+    drake = drake_twin(free)
     qs = rng.uniform(free.lower, free.upper, size=(300, 7))
     sphere_call = cpu_us_per_call(spheres.pair_distances, qs)
     drake_call = cpu_us_per_call(drake.signed_distance, qs)
@@ -203,7 +203,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             )
             holding = kitchen.collision_checker()
         start = time.perf_counter()
-        twins = {"free": drake_twin(kitchen, free), "holding": drake_twin(kitchen, holding)}
+        twins = {"free": drake_twin(free), "holding": drake_twin(holding)}
         build_s = (time.perf_counter() - start) / 2
         qs = np.random.default_rng(args.seed).uniform(free.lower, free.upper, size=(args.configurations, 7))
         print(

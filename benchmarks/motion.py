@@ -174,20 +174,16 @@ plans); spheres-only: the sphere model alone (conservative, so it rejects near-c
 def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[MotionQuery]:
     """One free-space query per action of the problem's BFS plan, until a skill fails to sample."""
     from kitchen_tamp.kitchen import SkillFailure, load_kitchen_problem, sample_action_targets
-    from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, ROBOT_BODY
     from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
     from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
     from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
     from kitchen_tamp.planning.search.registry import plan
-    from kitchen_tamp.world import panda_urdf_path
     from kitchen_tamp.world.scene_description import describe_collision_checker
 
     task, kitchen = load_kitchen_problem(problem)
     found = plan(task, "bfs")
     if found.plan is None:
         raise RuntimeError(f"{problem.name}: no symbolic plan ({found.status})")
-    paths: dict[str, Path | str] = {KITCHEN_BODY: kitchen.map.kitchen_urdf, ROBOT_BODY: panda_urdf_path()}
-    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
     space = ConfigurationSpace(kitchen.robot.lower, kitchen.robot.upper)
     rng = np.random.default_rng(seed)
     queries: list[MotionQuery] = []
@@ -198,10 +194,10 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
             break
         checker: CollisionChecker = targets.free_space_checker
         if backend == "drake":
-            description = describe_collision_checker(targets.free_space_checker, paths)
+            description = describe_collision_checker(targets.free_space_checker)
             checker = DrakeCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
         if backend.startswith("spheres"):
-            description = describe_collision_checker(targets.free_space_checker, paths)
+            description = describe_collision_checker(targets.free_space_checker)
             checker = spheres = SphereCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
             if backend == "spheres":
                 drake = DrakeCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)

@@ -6,14 +6,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
 from kitchen_tamp.world import (
@@ -21,7 +19,6 @@ from kitchen_tamp.world import (
     Pose,
     PyBulletCollisionChecker,
     make_collision_checker,
-    panda_urdf_path,
 )
 from kitchen_tamp.world.scene_description import describe_collision_checker
 from tests.kitchen.conftest import REPO
@@ -37,10 +34,9 @@ class CheckerPair:
     drake: DrakeCollisionChecker
 
 
-def drake_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
-    paths: dict[str, Path | str] = {KITCHEN_BODY: kitchen.map.kitchen_urdf, ROBOT_BODY: panda_urdf_path()}
-    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
-    return DrakeCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)
+def drake_twin(checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
+    """The same scene for the other model, described from the files the simulator loaded."""
+    return DrakeCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
 
 
 @pytest.fixture(scope="module")
@@ -53,7 +49,7 @@ def kitchen() -> Iterator[KitchenScene]:
 @pytest.fixture(scope="module")
 def free(kitchen: KitchenScene) -> CheckerPair:
     checker = kitchen.collision_checker()
-    return CheckerPair(checker, drake_twin(kitchen, checker))
+    return CheckerPair(checker, drake_twin(checker))
 
 
 @pytest.fixture(scope="module")
@@ -63,7 +59,7 @@ def holding(kitchen: KitchenScene, free: CheckerPair) -> CheckerPair:
         sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
         assert kitchen.held_box() == "spam"
         checker = kitchen.collision_checker()
-    return CheckerPair(checker, drake_twin(kitchen, checker))
+    return CheckerPair(checker, drake_twin(checker))
 
 
 def countertop_configurations(kitchen: KitchenScene) -> tuple[np.ndarray, np.ndarray]:
@@ -110,7 +106,7 @@ def test_checks_the_same_pairs_as_pybullet(request: pytest.FixtureRequest, scene
 def test_allowed_contacts_are_checked_to_their_bound(kitchen: KitchenScene) -> None:
     handle = AllowedContact("kitchen", "drawer_handle", kitchen.robot.gripper_links)
     checker = make_collision_checker(kitchen.scene, kitchen.robot, [handle])
-    drake = drake_twin(kitchen, checker)
+    drake = drake_twin(checker)
     gripper_on_handle = frozenset(("panda/panda_hand", "kitchen/drawer_handle"))
     assert gripper_on_handle in drake.checked_pairs
     assert drake.contact_pairs == {gripper_on_handle: handle.max_penetration} | {
@@ -133,7 +129,7 @@ def test_hand_in_the_countertop_collides_in_both(kitchen: KitchenScene, free: Ch
 
 def test_margin_means_minimum_distance(kitchen: KitchenScene, free: CheckerPair) -> None:
     checker = make_collision_checker(kitchen.scene, kitchen.robot, margin=0.02)
-    drake = drake_twin(kitchen, checker)
+    drake = drake_twin(checker)
     qs = np.random.default_rng(2).uniform(drake.lower, drake.upper, size=(40, 7))
     distances = np.array([free.drake.min_distance(q) for q in qs])
     assert drake.is_valid(qs).tolist() == (distances >= 0.02).tolist()

@@ -6,14 +6,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import pybullet as p
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
-from kitchen_tamp.kitchen.kitchen_map import KITCHEN_BODY, ROBOT_BODY
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 from kitchen_tamp.motion.sphere_covering import (
@@ -40,10 +38,9 @@ class CheckerPair:
     spheres: SphereCollisionChecker
 
 
-def sphere_twin(kitchen: KitchenScene, checker: PyBulletCollisionChecker) -> SphereCollisionChecker:
-    paths: dict[str, Path | str] = {KITCHEN_BODY: kitchen.map.kitchen_urdf, ROBOT_BODY: panda_urdf_path()}
-    paths |= {name: kitchen.map.boxes[name].urdf for name in kitchen.boxes}
-    return SphereCollisionChecker(describe_collision_checker(checker, paths), margin=checker.margin)
+def sphere_twin(checker: PyBulletCollisionChecker) -> SphereCollisionChecker:
+    """The same scene for the other model, described from the files the simulator loaded."""
+    return SphereCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +53,7 @@ def kitchen() -> Iterator[KitchenScene]:
 @pytest.fixture(scope="module")
 def free(kitchen: KitchenScene) -> CheckerPair:
     checker = kitchen.collision_checker()
-    return CheckerPair(checker, sphere_twin(kitchen, checker))
+    return CheckerPair(checker, sphere_twin(checker))
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +63,7 @@ def holding(kitchen: KitchenScene) -> CheckerPair:
         sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
         assert kitchen.held_box() == "spam"
         checker = kitchen.collision_checker()
-    return CheckerPair(checker, sphere_twin(kitchen, checker))
+    return CheckerPair(checker, sphere_twin(checker))
 
 
 def test_spheres_cover_every_panda_collision_hull() -> None:
@@ -171,7 +168,7 @@ def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) ->
     with kitchen.scene.preserved():
         for opening in (0.0, 0.2):
             kitchen.scene.set_joint_positions(kitchen.kitchen, ["drawer_joint"], [opening])
-            spheres = sphere_twin(kitchen, kitchen.collision_checker()).model
+            spheres = sphere_twin(kitchen.collision_checker()).model
             boxes = spheres.boxes
             corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
             for body_name, link in set(boxes.owners):
