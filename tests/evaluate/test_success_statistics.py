@@ -17,6 +17,15 @@ def test_wilson_interval_matches_published_values(
     assert wilson_interval(successes, trials) == pytest.approx((low, high), abs=1e-4)
 
 
+def test_the_interval_always_holds_the_observed_rate() -> None:
+    # at 0% and 100% rounding once put an end a hair inside the rate: a negative error bar
+    # crashed the success plot of a 10-seed sweep
+    for trials in range(1, 101):
+        for successes in range(trials + 1):
+            low, high = wilson_interval(successes, trials)
+            assert 0.0 <= low <= successes / trials <= high <= 1.0
+
+
 def test_no_trials_tells_nothing() -> None:
     assert wilson_interval(0, 0) == (0.0, 1.0)
 
