@@ -4,14 +4,13 @@ the finite-difference one."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
 from kitchen_tamp.world import (
@@ -21,7 +20,6 @@ from kitchen_tamp.world import (
     make_collision_checker,
 )
 from kitchen_tamp.world.scene_description import describe_collision_checker
-from tests.kitchen.conftest import REPO
 
 CONFIGURATIONS = 500
 NEAR_CONTACT = 0.003
@@ -37,13 +35,6 @@ class CheckerPair:
 def drake_twin(checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
     """The same scene for the other model, described from the files the simulator loaded."""
     return DrakeCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
-
-
-@pytest.fixture(scope="module")
-def kitchen() -> Iterator[KitchenScene]:
-    _, built = load_kitchen_problem(REPO / "pddl" / "problem.pddl")
-    with built:
-        yield built
 
 
 @pytest.fixture(scope="module")

@@ -4,14 +4,13 @@ finite-difference ones, and it is built from what the simulator loaded (no drift
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 import pybullet as p
 import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
+from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 from kitchen_tamp.motion.sphere_covering import (
@@ -26,7 +25,6 @@ from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.motion.sphere_urdf import read_urdf
 from kitchen_tamp.world import PyBulletCollisionChecker, panda_urdf_path
 from kitchen_tamp.world.scene_description import describe_collision_checker
-from tests.kitchen.conftest import REPO
 
 RANDOM_CONFIGURATIONS = 2000
 NEAR_CONFIGURATIONS = 300
@@ -41,13 +39,6 @@ class CheckerPair:
 def sphere_twin(checker: PyBulletCollisionChecker) -> SphereCollisionChecker:
     """The same scene for the other model, described from the files the simulator loaded."""
     return SphereCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
-
-
-@pytest.fixture(scope="module")
-def kitchen() -> Iterator[KitchenScene]:
-    _, built = load_kitchen_problem(REPO / "pddl" / "problem.pddl")
-    with built:
-        yield built
 
 
 @pytest.fixture(scope="module")
