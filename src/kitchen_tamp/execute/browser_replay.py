@@ -224,9 +224,7 @@ class RolloutRecorder:
         self._camera: CameraView | None = None
 
     def __call__(self, time_s: float, kitchen: KitchenScene) -> None:
-        if self._recorder is None or self._recorder.scene is not kitchen.scene:
-            if self._recorder is not None:
-                return  # a re-plan's scratch kitchen: the rollout's own scene is the one shown
+        if self._recorder is None:
             self._recorder = SceneRecorder(kitchen.scene)
             self._camera = overview_camera(kitchen)
         self._recorder.capture(time_s)
