@@ -26,7 +26,9 @@ from kitchen_tamp.motion.drake_collision import DEFAULT_DISTANCE_HORIZON, Descri
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 from kitchen_tamp.motion.sphere_covering import DEFAULT_COVERING_TOLERANCE
 from kitchen_tamp.motion.sphere_distances import SpherePairs, pair_distances, pair_distances_and_gradients
+from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
 from kitchen_tamp.motion.sphere_kernels import valid_configurations
+from kitchen_tamp.motion.sphere_reference import reference_validity
 from kitchen_tamp.motion.sphere_scene import PYBULLET_MESH_MARGIN, SphereScene
 
 FloatArray = npt.NDArray[np.float64]
@@ -61,50 +63,7 @@ class SphereCollisionChecker:
         self._kernel_arguments = self._arrays()
 
     def _arrays(self) -> tuple[Any, ...]:
-        model, layout = self.model, self.model.tree.flat_layout()
-        centers, radii = [], []
-        for group in model.groups:
-            local = model.sphere_centers[group.spheres]
-            center = (local.min(axis=0) + local.max(axis=0)) / 2.0
-            centers.append(center)
-            radii.append(
-                float(np.max(np.linalg.norm(local - center, axis=1) + model.sphere_radii[group.spheres]))
-            )
-        boxes_center = model.boxes.centers
-        boxes_reach = np.einsum("bij,bj->bi", np.abs(model.boxes.rotations), model.boxes.half_extents)
-        return (
-            self.lower,
-            self.upper,
-            layout.root,
-            layout.parents,
-            layout.origins @ layout.held,
-            layout.kinds,
-            layout.axes,
-            layout.variables,
-            model.sphere_links.astype(np.int64),
-            model.sphere_centers,
-            model.sphere_radii,
-            np.array([g.robot_link for g in model.groups], dtype=np.int64),
-            np.array([g.spheres.start for g in model.groups], dtype=np.int64),
-            np.array([g.spheres.stop for g in model.groups], dtype=np.int64),
-            np.array(centers).reshape(-1, 3),
-            np.array(radii),
-            np.ascontiguousarray(model.boxes.rotations),
-            np.ascontiguousarray(model.boxes.centers),
-            np.ascontiguousarray(model.boxes.half_extents),
-            boxes_center - boxes_reach,
-            boxes_center + boxes_reach,
-            self._likely_first(model.group_box_pairs).astype(np.int64),
-            model.group_pairs.astype(np.int64),
-        )
-
-    def _likely_first(self, group_box_pairs: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
-        """(group, box) pairs ordered so that a collision tends to be met early: the hand's end of
-        the arm and carried bodies first (they sweep the most), then the largest boxes."""
-        volume = np.prod(self.model.boxes.half_extents, axis=1)
-        links = np.array([g.robot_link for g in self.model.groups])
-        order = np.lexsort((-volume[group_box_pairs[:, 1]], -links[group_box_pairs[:, 0]]))
-        return group_box_pairs[order]
+        return kernel_arguments(self.model, self.lower, self.upper)
 
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""
@@ -112,13 +71,10 @@ class SphereCollisionChecker:
         return np.asarray(_VALID_CONFIGURATIONS(batch, *self._kernel_arguments, self.margin), dtype=np.bool_)
 
     def is_valid_uncompiled(self, qs: JointConfigurations) -> ValidityMask:
-        """The same verdicts as ``is_valid`` from every pair's distance in numpy (a reference)."""
-        batch = np.atleast_2d(np.asarray(qs, dtype=float))
-        within = np.all((batch >= self.lower - 1e-9) & (batch <= self.upper + 1e-9), axis=1)
-        if len(self.pairs) == 0:
-            return np.asarray(within, dtype=np.bool_)
-        clear = np.all(pair_distances(self.model, self.pairs, batch) >= self.margin, axis=1)
-        return np.asarray(within & clear, dtype=np.bool_)
+        """The same verdicts as ``is_valid`` from every pair's spheres in numpy (a reference)."""
+        return reference_validity(
+            self.model, np.asarray(qs, dtype=float), self.margin, self.lower, self.upper
+        )
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         """Whether the straight segment is valid, checked at the checker's resolution."""

@@ -159,11 +159,17 @@ def enclosing_sphere(points: FloatArray, iterations: int = 200) -> tuple[FloatAr
     return center, float(np.sqrt(np.max(np.sum((points - center) ** 2, axis=1))))
 
 
-def overshoot(center: FloatArray, radius: float, planes: tuple[FloatArray, FloatArray]) -> float:
-    """How far (m) the sphere reaches past the polytope's face planes: its radius less the
-    centre's depth under the nearest face (a lower bound of how far it reaches outside)."""
+def depth_below_faces(points: FloatArray, planes: tuple[FloatArray, FloatArray]) -> FloatArray:
+    """How deep (m) each point (n, 3) lies under the polytope's nearest face plane (negative outside)."""
     normals, offsets = planes
-    return float(max(0.0, radius - np.min(offsets - normals @ center)))
+    return np.asarray(np.min(offsets[None] - points @ normals.T, axis=1), dtype=float)
+
+
+def overshoot(center: FloatArray, radius: float, planes: tuple[FloatArray, FloatArray]) -> float:
+    """How far (m) the sphere reaches outside the polytope: its radius less the centre's depth
+    under the nearest face. Exact for a centre inside (the farthest point of a ball from a convex
+    set lies ``radius`` beyond the centre's nearest supporting plane); a lower bound otherwise."""
+    return float(max(0.0, radius - depth_below_faces(center[None], planes)[0]))
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,10 +1,13 @@
 """The compiled validity kernel of the sphere model: per configuration, forward kinematics, then
-group bounds before spheres, stopping at the first pair closer than the margin.
+each checked pair at two levels, stopping at the first pair closer than the margin.
+
+The coarse level (a few spheres per link behind one bound per group) clears most pairs; a pair
+it cannot clear is opened at the fine level, the tight covering of `sphere_tight_covering` held
+in a binary tree of bounding spheres per group (laid out by `sphere_kernel_layout`).
 
 Compiled by numba on first use and cached on disk (``cache=True``: beside this
 file, or where ``NUMBA_CACHE_DIR`` points), so a cold start loads it instead
-of compiling again. Arrays only; `sphere_checker` prepares them from a
-`SphereScene`.
+of compiling again. Arrays only.
 
 Layout: links in parent-before-child order with ``parents`` (-1 for the root),
 ``origins`` (L, 4, 4) joint origins, ``kinds`` (0 fixed or held, 1 revolute, 2
@@ -109,9 +112,143 @@ def _distance(a: FloatArray, b: FloatArray) -> float:
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
+def _apart(a: FloatArray, b: FloatArray, reach: float) -> bool:
+    """Whether the points are at least ``reach`` apart (squared distances: no root)."""
+    if reach <= 0.0:
+        return True
+    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
+    return bool(dx * dx + dy * dy + dz * dz >= reach * reach)
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
 def _world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
     for k in range(3):
         out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
+
+
+STACK_DEPTH = 256
+"""Room for pending nodes (or node pairs) of one tree traversal; the trees are far shallower."""
+
+
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _place(
+    index: int,
+    poses: FloatArray,
+    links: npt.NDArray[np.int64],
+    local: FloatArray,
+    world: FloatArray,
+    placed: npt.NDArray[np.bool_],
+) -> None:
+    """World position of a sphere or bound, computed once per configuration."""
+    if not placed[index]:
+        _world_point(poses[links[index]], local[index], world[index])
+        placed[index] = True
+
+
+@numba.njit(cache=True, fastmath=True)
+def _tree_hits_box(
+    root: int,
+    b: int,
+    poses: FloatArray,
+    margin: float,
+    node_links: npt.NDArray[np.int64],
+    node_centers: FloatArray,
+    node_radii: FloatArray,
+    node_children: npt.NDArray[np.int64],
+    node_first: npt.NDArray[np.int64],
+    node_last: npt.NDArray[np.int64],
+    node_world: FloatArray,
+    node_placed: npt.NDArray[np.bool_],
+    sphere_links: npt.NDArray[np.int64],
+    sphere_centers: FloatArray,
+    sphere_radii: FloatArray,
+    sphere_world: FloatArray,
+    sphere_placed: npt.NDArray[np.bool_],
+    box_rotations: FloatArray,
+    box_centers: FloatArray,
+    box_halves: FloatArray,
+    stack: npt.NDArray[np.int64],
+) -> bool:
+    """Whether a sphere under node ``root`` comes closer than the margin to box ``b``: bounds are
+    opened only when they come that close."""
+    top = 0
+    stack[0] = root
+    while top >= 0:
+        n = stack[top]
+        top -= 1
+        _place(n, poses, node_links, node_centers, node_world, node_placed)
+        if _box_gap(node_world[n], box_rotations[b], box_centers[b], box_halves[b]) - node_radii[n] >= margin:
+            continue
+        if node_children[n, 0] < 0:
+            for s in range(node_first[n], node_last[n]):
+                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
+                if (
+                    _box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
+                    - sphere_radii[s]
+                    < margin
+                ):
+                    return True
+            continue
+        stack[top + 1] = node_children[n, 0]
+        stack[top + 2] = node_children[n, 1]
+        top += 2
+    return False
+
+
+@numba.njit(cache=True, fastmath=True)
+def _trees_touch(
+    root_a: int,
+    root_b: int,
+    poses: FloatArray,
+    margin: float,
+    node_links: npt.NDArray[np.int64],
+    node_centers: FloatArray,
+    node_radii: FloatArray,
+    node_children: npt.NDArray[np.int64],
+    node_first: npt.NDArray[np.int64],
+    node_last: npt.NDArray[np.int64],
+    node_world: FloatArray,
+    node_placed: npt.NDArray[np.bool_],
+    sphere_links: npt.NDArray[np.int64],
+    sphere_centers: FloatArray,
+    sphere_radii: FloatArray,
+    sphere_world: FloatArray,
+    sphere_placed: npt.NDArray[np.bool_],
+    stack: npt.NDArray[np.int64],
+) -> bool:
+    """Whether a sphere under node ``root_a`` comes closer than the margin to one under ``root_b``:
+    pairs of bounds that come that close are opened, the larger first."""
+    top = 0
+    stack[0], stack[1] = root_a, root_b
+    while top >= 0:
+        a, b = stack[2 * top], stack[2 * top + 1]
+        top -= 1
+        _place(a, poses, node_links, node_centers, node_world, node_placed)
+        _place(b, poses, node_links, node_centers, node_world, node_placed)
+        if _apart(node_world[a], node_world[b], node_radii[a] + node_radii[b] + margin):
+            continue
+        leaf_a, leaf_b = node_children[a, 0] < 0, node_children[b, 0] < 0
+        if leaf_a and leaf_b:
+            for s in range(node_first[a], node_last[a]):
+                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
+                if _apart(sphere_world[s], node_world[b], sphere_radii[s] + node_radii[b] + margin):
+                    continue
+                for t in range(node_first[b], node_last[b]):
+                    _place(t, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
+                    if not _apart(
+                        sphere_world[s], sphere_world[t], sphere_radii[s] + sphere_radii[t] + margin
+                    ):
+                        return True
+            continue
+        if leaf_b or (not leaf_a and node_radii[a] >= node_radii[b]):
+            for child in range(2):
+                top += 1
+                stack[2 * top], stack[2 * top + 1] = node_children[a, child], b
+        else:
+            for child in range(2):
+                top += 1
+                stack[2 * top], stack[2 * top + 1] = a, node_children[b, child]
+    return False
 
 
 @numba.njit(cache=True, fastmath=True)
@@ -125,14 +262,24 @@ def valid_configurations(
     kinds: npt.NDArray[np.int64],
     axes: FloatArray,
     variables: npt.NDArray[np.int64],
+    group_links: npt.NDArray[np.int64],
+    group_centers: FloatArray,
+    group_radii: FloatArray,
+    group_starts: npt.NDArray[np.int64],
+    group_stops: npt.NDArray[np.int64],
     sphere_links: npt.NDArray[np.int64],
     sphere_centers: FloatArray,
     sphere_radii: FloatArray,
-    group_links: npt.NDArray[np.int64],
-    group_starts: npt.NDArray[np.int64],
-    group_stops: npt.NDArray[np.int64],
-    group_centers: FloatArray,
-    group_radii: FloatArray,
+    group_roots: npt.NDArray[np.int64],
+    node_links: npt.NDArray[np.int64],
+    node_centers: FloatArray,
+    node_radii: FloatArray,
+    node_children: npt.NDArray[np.int64],
+    node_first: npt.NDArray[np.int64],
+    node_last: npt.NDArray[np.int64],
+    fine_links: npt.NDArray[np.int64],
+    fine_centers: FloatArray,
+    fine_radii: FloatArray,
     box_rotations: FloatArray,
     box_centers: FloatArray,
     box_halves: FloatArray,
@@ -142,14 +289,25 @@ def valid_configurations(
     group_pairs: npt.NDArray[np.int64],
     margin: float,
 ) -> npt.NDArray[np.bool_]:
-    """Per row of ``qs``: within limits and no checked sphere pair closer than ``margin``."""
+    """Per row of ``qs``: within limits and no checked pair of fine spheres closer than ``margin``.
+
+    Two levels per pair: the coarse spheres (a few per link, behind one bound per group) clear a
+    pair when none comes within the margin; only a pair the coarse level cannot clear is opened
+    at the fine level, each group's tight spheres a binary tree of bounding spheres
+    (``node_children`` -1 at a leaf, whose spheres are ``node_first:node_last``). Both levels
+    cover the same shapes, so the verdict is the fine level's."""
     count = qs.shape[0]
     valid = np.ones(count, dtype=np.bool_)
     poses = np.empty((parents.shape[0], 4, 4))
     motion, frame = np.empty((4, 4)), np.empty((4, 4))
-    world = np.empty((sphere_radii.shape[0], 3))
-    placed = np.zeros(sphere_radii.shape[0], dtype=np.bool_)
     group_world = np.empty((group_radii.shape[0], 3))
+    sphere_world = np.empty((sphere_radii.shape[0], 3))
+    sphere_placed = np.zeros(sphere_radii.shape[0], dtype=np.bool_)
+    fine_world = np.empty((fine_radii.shape[0], 3))
+    fine_placed = np.zeros(fine_radii.shape[0], dtype=np.bool_)
+    node_world = np.empty((node_radii.shape[0], 3))
+    node_placed = np.zeros(node_radii.shape[0], dtype=np.bool_)
+    stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
     tolerance = 1e-9
     for m in range(count):
         for j in range(qs.shape[1]):
@@ -158,7 +316,9 @@ def valid_configurations(
         if not valid[m]:
             continue
         _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
-        placed[:] = False
+        sphere_placed[:] = False
+        fine_placed[:] = False
+        node_placed[:] = False
         for g in range(group_radii.shape[0]):
             _world_point(poses[group_links[g]], group_centers[g], group_world[g])
         for k in range(group_box_pairs.shape[0]):
@@ -170,41 +330,88 @@ def valid_configurations(
                 >= margin
             ):
                 continue
+            coarse_hit = False
             for s in range(group_starts[g], group_stops[g]):
-                if not placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
-                    placed[s] = True
+                if not sphere_placed[s]:
+                    _world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
+                    sphere_placed[s] = True
                 if (
-                    _box_gap(world[s], box_rotations[b], box_centers[b], box_halves[b]) - sphere_radii[s]
+                    _box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
+                    - sphere_radii[s]
                     < margin
                 ):
-                    valid[m] = False
+                    coarse_hit = True
                     break
-            if not valid[m]:
+            if coarse_hit and _tree_hits_box(
+                group_roots[g],
+                b,
+                poses,
+                margin,
+                node_links,
+                node_centers,
+                node_radii,
+                node_children,
+                node_first,
+                node_last,
+                node_world,
+                node_placed,
+                fine_links,
+                fine_centers,
+                fine_radii,
+                fine_world,
+                fine_placed,
+                box_rotations,
+                box_centers,
+                box_halves,
+                stack,
+            ):
+                valid[m] = False
                 break
         if not valid[m]:
             continue
         for k in range(group_pairs.shape[0]):
             g, h = group_pairs[k, 0], group_pairs[k, 1]
-            gap = _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h]
-            if gap >= margin:
+            if _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= margin:
                 continue
+            coarse_hit = False
             for s in range(group_starts[g], group_stops[g]):
-                if not placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
-                    placed[s] = True
-                if _distance(world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
+                if not sphere_placed[s]:
+                    _world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
+                    sphere_placed[s] = True
+                if _distance(sphere_world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
                     continue
                 for t in range(group_starts[h], group_stops[h]):
-                    if not placed[t]:
-                        _world_point(poses[sphere_links[t]], sphere_centers[t], world[t])
-                        placed[t] = True
-                    gap = _distance(world[s], world[t]) - sphere_radii[s] - sphere_radii[t]
-                    if gap < margin:
-                        valid[m] = False
+                    if not sphere_placed[t]:
+                        _world_point(poses[sphere_links[t]], sphere_centers[t], sphere_world[t])
+                        sphere_placed[t] = True
+                    if (
+                        _distance(sphere_world[s], sphere_world[t]) - sphere_radii[s] - sphere_radii[t]
+                        < margin
+                    ):
+                        coarse_hit = True
                         break
-                if not valid[m]:
+                if coarse_hit:
                     break
-            if not valid[m]:
+            if coarse_hit and _trees_touch(
+                group_roots[g],
+                group_roots[h],
+                poses,
+                margin,
+                node_links,
+                node_centers,
+                node_radii,
+                node_children,
+                node_first,
+                node_last,
+                node_world,
+                node_placed,
+                fine_links,
+                fine_centers,
+                fine_radii,
+                fine_world,
+                fine_placed,
+                stack,
+            ):
+                valid[m] = False
                 break
     return valid

@@ -6,9 +6,13 @@ Built from the scene description the simulator's checker is described by
 `DescribedScene` protocol): every body from its URDF where its base stands,
 held joints (the fingers' opening, the drawer) where the description has them.
 
-- Robot links: spheres covering each collision mesh's convex hull
-  (`sphere_covering`), padded by ``mesh_padding``; the fingers at their opening.
-- Carried bodies: their shapes covered by spheres, riding on the parent link.
+- Robot links: spheres covering each collision mesh's convex hull, padded by
+  ``mesh_padding``; the fingers at their opening. Two coverings of each shape:
+  coarse (`sphere_covering`, ``sphere_centers``: a centimetre or two loose,
+  what the distance queries use) and tight (`sphere_tight_covering`,
+  ``fine_centers``: a few millimetres), which the validity kernel opens only
+  where the coarse one cannot clear a pair.
+- Carried bodies: their shapes covered by spheres (both levels), riding on the parent link.
 - Other bodies: one oriented box per collision shape (boxes exactly; spheres,
   cylinders and meshes by their bounding boxes, which cover them).
 
@@ -23,7 +27,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -41,6 +45,7 @@ from kitchen_tamp.motion.sphere_covering import (
     mesh_hull_polytope,
 )
 from kitchen_tamp.motion.sphere_kinematics import KinematicTree
+from kitchen_tamp.motion.sphere_tight_covering import TIGHT_COVERING_TOLERANCE, cover_tightly
 from kitchen_tamp.motion.sphere_urdf import UrdfCollision, read_urdf
 from kitchen_tamp.user_cache import cache_directory
 
@@ -49,6 +54,8 @@ IndexArray = npt.NDArray[np.intp]
 
 COVERING_VERSION = "2"
 """Bump when `sphere_covering` changes how spheres are made: cached sphere sets are keyed by it."""
+TIGHT_COVERING_VERSION = "tight-1"
+"""The same for `sphere_tight_covering`."""
 PYBULLET_MESH_MARGIN = 0.001
 """PyBullet pads every convex mesh by about this much (m); robot spheres are padded by it so that
 what PyBullet calls touching the model calls touching too."""
@@ -75,9 +82,9 @@ def sphere_cache_directory() -> Path:
     return cache_directory() / "spheres"
 
 
-def _cache_key(shape: UrdfCollision, tolerance: float) -> str:
+def _cache_key(shape: UrdfCollision, tolerance: float, tight: bool) -> str:
     digest = hashlib.sha256()
-    digest.update(COVERING_VERSION.encode())
+    digest.update((TIGHT_COVERING_VERSION if tight else COVERING_VERSION).encode())
     digest.update(np.asarray([tolerance, DEFAULT_MAX_SPHERES, *shape.size.tolist()], dtype=float).tobytes())
     digest.update(np.asarray(shape.origin, dtype=float).tobytes())
     digest.update(shape.kind.encode())
@@ -87,16 +94,23 @@ def _cache_key(shape: UrdfCollision, tolerance: float) -> str:
 
 
 @functools.lru_cache(maxsize=256)
-def _covered_shape(urdf_path: str, index: int, tolerance: float) -> SphereSet:
-    """Spheres covering one collision shape of a URDF, in its link's frame (kept in memory and
-    on disk: a mesh is covered once per machine, not once per run)."""
+def _covered_shape(urdf_path: str, index: int, tolerance: float, tight: bool = False) -> SphereSet:
+    """Spheres covering one collision shape of a URDF, in its link's frame, coarse
+    (`cover_with_spheres`) or ``tight`` (`cover_tightly`); kept in memory and on disk: a mesh is
+    covered once per machine, not once per run."""
     shape = read_urdf(urdf_path).collisions[index]
     if shape.kind == "sphere":
         return SphereSet(shape.origin[:3, 3][None], shape.size[:1].copy())
-    try:
-        cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance)}.json"
-    except RuntimeError:  # no home directory: no cache, only time lost
+
+    def cover() -> SphereSet:
+        if tight:
+            return cover_tightly(shape_polytope(shape), tolerance)
         return cover_with_spheres(shape_polytope(shape), tolerance)
+
+    try:
+        cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance, tight)}.json"
+    except RuntimeError:  # no home directory: no cache, only time lost
+        return cover()
     try:
         stored = json.loads(cached.read_text())
         return SphereSet(
@@ -104,7 +118,7 @@ def _covered_shape(urdf_path: str, index: int, tolerance: float) -> SphereSet:
         )
     except (OSError, ValueError, KeyError):
         pass
-    covered = cover_with_spheres(shape_polytope(shape), tolerance)
+    covered = cover()
     try:
         cached.parent.mkdir(parents=True, exist_ok=True)
         text = json.dumps({"centers": covered.centers.tolist(), "radii": covered.radii.tolist()})
@@ -127,6 +141,8 @@ class SphereGroup:
     role: str
     """"moving", "fixed" (a robot link the arm does not move) or "carried"."""
     gripper: bool = False
+    fine_spheres: slice = field(default_factory=lambda: slice(0, 0))
+    """Where the group's tight covering is in ``SphereScene.fine_centers`` (the fine level)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -148,6 +164,7 @@ class SphereScene:
         scene: DescribedScene,
         tolerance: float = DEFAULT_COVERING_TOLERANCE,
         mesh_padding: float = PYBULLET_MESH_MARGIN,
+        fine_tolerance: float = TIGHT_COVERING_TOLERANCE,
     ) -> None:
         self.arm_lower: FloatArray = np.array(scene.arm_lower, dtype=float)
         self.arm_upper: FloatArray = np.array(scene.arm_upper, dtype=float)
@@ -158,26 +175,34 @@ class SphereScene:
         )
         carried = {a.child: a for a in scene.attachments if a.parent == scene.robot}
         spheres: list[SphereSet] = []
+        fine: list[SphereSet] = []
         groups: list[SphereGroup] = []
 
-        def add(name: str, body: str, link: str, robot_link: int, covered: SphereSet, role: str) -> None:
-            start = sum(len(s) for s in spheres)
-            spheres.append(covered)
+        def add(
+            name: str, body: str, link: str, robot_link: int, covered: list[SphereSet], role: str
+        ) -> None:
+            coarse_set, fine_set = SphereSet.concatenate(covered[0::2]), SphereSet.concatenate(covered[1::2])
+            start, fine_start = sum(len(s) for s in spheres), sum(len(s) for s in fine)
+            spheres.append(coarse_set)
+            fine.append(fine_set)
             gripper = role != "carried" and link in scene.gripper_links
-            groups.append(
-                SphereGroup(name, body, link, robot_link, slice(start, start + len(covered)), role, gripper)
-            )
+            coarse_slice = slice(start, start + len(coarse_set))
+            fine_slice = slice(fine_start, fine_start + len(fine_set))
+            groups.append(SphereGroup(name, body, link, robot_link, coarse_slice, role, gripper, fine_slice))
 
         for link in model.links:
             covered = [
-                _covered_shape(model.path, i, tolerance).padded(mesh_padding if shape.kind == "mesh" else 0.0)
+                _covered_shape(model.path, i, level_tolerance, tight).padded(
+                    mesh_padding if shape.kind == "mesh" else 0.0
+                )
                 for i, shape in enumerate(model.collisions)
                 if shape.link == link
+                for level_tolerance, tight in ((tolerance, False), (fine_tolerance, True))
             ]
             if covered:
                 index = self.tree.link_index[link]
                 role = "moving" if self.tree.depends[index, 0] else "fixed"
-                add(f"{scene.robot}/{link}", scene.robot, link, index, SphereSet.concatenate(covered), role)
+                add(f"{scene.robot}/{link}", scene.robot, link, index, covered, role)
         for name, attachment in carried.items():
             body = next(b for b in scene.bodies if b.name == name)
             child = read_urdf(body.urdf_path)
@@ -186,19 +211,29 @@ class SphereScene:
             ).link_poses(np.zeros((1, 0)))[0]
             for link in child.links:
                 covered = [
-                    _covered_shape(child.path, i, tolerance).transformed(child_poses[child.links.index(link)])
+                    _covered_shape(child.path, i, level_tolerance, tight).transformed(
+                        child_poses[child.links.index(link)]
+                    )
                     for i, shape in enumerate(child.collisions)
                     if shape.link == link
+                    for level_tolerance, tight in ((tolerance, False), (fine_tolerance, True))
                 ]
                 if covered:
                     parent_index = self.tree.link_index[attachment.parent_link]
-                    add(f"{name}/{link}", name, link, parent_index, SphereSet.concatenate(covered), "carried")
+                    add(f"{name}/{link}", name, link, parent_index, covered, "carried")
         merged = SphereSet.concatenate(spheres)
         self.sphere_centers: FloatArray = merged.centers
         """(S, 3) sphere centres in the frame of the robot link each rides on."""
         self.sphere_radii: FloatArray = merged.radii
         self.sphere_links: IndexArray = np.concatenate(
             [np.full(g.spheres.stop - g.spheres.start, g.robot_link) for g in groups]
+        ).astype(np.intp)
+        merged_fine = SphereSet.concatenate(fine)
+        self.fine_centers: FloatArray = merged_fine.centers
+        """(F, 3) the tight covering's sphere centres (the fine level), as ``sphere_centers``."""
+        self.fine_radii: FloatArray = merged_fine.radii
+        self.fine_links: IndexArray = np.concatenate(
+            [np.full(g.fine_spheres.stop - g.fine_spheres.start, g.robot_link) for g in groups]
         ).astype(np.intp)
         self.groups = tuple(groups)
         self.boxes = self._obstacle_boxes(scene, set(carried))

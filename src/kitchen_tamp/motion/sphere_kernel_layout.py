@@ -1,0 +1,138 @@
+"""The arrays the compiled validity kernel (`sphere_kernels.valid_configurations`) takes, laid out
+from a `SphereScene`: the kinematic tree, the coarse spheres with one bound per group, the fine
+spheres in a binary tree of bounding spheres per group, the obstacle boxes and the checked pairs
+in the order most likely to meet a collision first.
+
+A group's fine spheres are halved across the widest extent of their centres until a leaf holds
+at most ``LEAF_SIZE``; spheres are stored leaf by leaf, so every node's spheres are one range. A
+bound holds every sphere under it (centre distance plus radius), so a bound clear of an
+obstacle proves its spheres clear.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.sphere_scene import SphereScene
+
+FloatArray = npt.NDArray[np.float64]
+IndexArray = npt.NDArray[np.intp]
+
+LEAF_SIZE = 4
+"""Spheres per leaf of a bounding-sphere tree at most."""
+
+
+def _split(centers: FloatArray, members: IndexArray) -> tuple[IndexArray, IndexArray]:
+    """``members`` halved across the widest extent of their centres."""
+    points = centers[members]
+    axis = int(np.argmax(points.max(axis=0) - points.min(axis=0)))
+    order = members[np.argsort(points[:, axis], kind="stable")]
+    return order[: len(order) // 2], order[len(order) // 2 :]
+
+
+def _bound(centers: FloatArray, radii: FloatArray) -> tuple[FloatArray, float]:
+    """A sphere holding every sphere given: centred mid-box, the farthest reach as radius."""
+    center = (centers.min(axis=0) + centers.max(axis=0)) / 2.0
+    return center, float(np.max(np.linalg.norm(centers - center, axis=1) + radii))
+
+
+def _likely_first(scene: SphereScene, group_box_pairs: IndexArray) -> IndexArray:
+    """(group, box) pairs ordered so that a collision tends to be met early: the hand's end of
+    the arm and carried bodies first (they sweep the most), then the largest boxes."""
+    volume = np.prod(scene.boxes.half_extents, axis=1)
+    links = np.array([g.robot_link for g in scene.groups])
+    order = np.lexsort((-volume[group_box_pairs[:, 1]], -links[group_box_pairs[:, 0]]))
+    return group_box_pairs[order]
+
+
+class _Tree:
+    """Bounding-sphere trees of the groups, built node by node (spheres stored leaf by leaf)."""
+
+    def __init__(self, centers: FloatArray, radii: FloatArray) -> None:
+        self.sphere_centers, self.sphere_radii = centers, radii
+        self.links: list[int] = []
+        self.centers: list[FloatArray] = []
+        self.radii: list[float] = []
+        self.children: list[list[int]] = []
+        self.first: list[int] = []
+        self.last: list[int] = []
+        self.order: list[IndexArray] = []
+        self.stored = 0
+
+    def build(self, members: IndexArray, link: int) -> int:
+        node = len(self.radii)
+        center, radius = _bound(self.sphere_centers[members], self.sphere_radii[members])
+        self.links.append(link)
+        self.centers.append(center)
+        self.radii.append(radius)
+        self.children.append([-1, -1])
+        self.first.append(self.stored)
+        self.last.append(self.stored)
+        if len(members) <= LEAF_SIZE:
+            self.order.append(members)
+            self.stored += len(members)
+        else:
+            low, high = _split(self.sphere_centers, members)
+            self.children[node] = [self.build(low, link), self.build(high, link)]
+        self.last[node] = self.stored
+        return node
+
+
+def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
+    """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``."""
+    layout = scene.tree.flat_layout()
+    group_centers, group_radii = [], []
+    for group in scene.groups:
+        center, radius = _bound(scene.sphere_centers[group.spheres], scene.sphere_radii[group.spheres])
+        group_centers.append(center)
+        group_radii.append(radius)
+    tree = _Tree(scene.fine_centers, scene.fine_radii)
+    roots = [
+        tree.build(np.arange(group.fine_spheres.start, group.fine_spheres.stop), group.robot_link)
+        for group in scene.groups
+    ]
+    order = np.concatenate(tree.order) if tree.order else np.zeros(0, dtype=np.intp)
+    boxes = scene.boxes
+    reach = np.einsum("bij,bj->bi", np.abs(boxes.rotations), boxes.half_extents)
+
+    def indices(values: list[int] | IndexArray) -> npt.NDArray[np.int64]:
+        return np.asarray(values, dtype=np.int64)
+
+    return (
+        lower,
+        upper,
+        layout.root,
+        layout.parents,
+        layout.origins @ layout.held,
+        layout.kinds,
+        layout.axes,
+        layout.variables,
+        indices([g.robot_link for g in scene.groups]),
+        np.array(group_centers, dtype=float).reshape(-1, 3),
+        np.array(group_radii, dtype=float),
+        indices([g.spheres.start for g in scene.groups]),
+        indices([g.spheres.stop for g in scene.groups]),
+        indices(scene.sphere_links),
+        scene.sphere_centers,
+        scene.sphere_radii,
+        indices(roots),
+        indices(tree.links),
+        np.array(tree.centers, dtype=float).reshape(-1, 3),
+        np.array(tree.radii, dtype=float),
+        np.array(tree.children, dtype=np.int64).reshape(-1, 2),
+        indices(tree.first),
+        indices(tree.last),
+        indices(scene.fine_links[order]),
+        np.ascontiguousarray(scene.fine_centers[order]),
+        np.ascontiguousarray(scene.fine_radii[order]),
+        np.ascontiguousarray(boxes.rotations),
+        np.ascontiguousarray(boxes.centers),
+        np.ascontiguousarray(boxes.half_extents),
+        boxes.centers - reach,
+        boxes.centers + reach,
+        indices(_likely_first(scene, scene.group_box_pairs)).reshape(-1, 2),
+        indices(scene.group_pairs).reshape(-1, 2),
+    )
