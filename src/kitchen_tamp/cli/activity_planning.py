@@ -6,21 +6,21 @@ import argparse
 import os
 import sys
 import time
-from collections.abc import Sequence
-from pathlib import Path
 
 from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.search.registry import SEARCH_DESCRIPTIONS, SEARCHES, plan
-from kitchen_tamp.planning.search.result import SearchResult
-from kitchen_tamp.planning.task import Task
 from kitchen_tamp.planning.task_cache import load_task_cached
 from kitchen_tamp.planning.validation import plan_text, validate_plan
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
+    from collections.abc import Sequence
     from typing import Any
+
+    from kitchen_tamp.planning.search.result import SearchResult
+    from kitchen_tamp.planning.task import Task
 
 DEFAULT_PLANNERS = ("bfs", "ehc")
 
@@ -65,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
                                          "shipped kitchen domain)")
     parser.add_argument("--planner", choices=[*SEARCHES, "all"], action="append",
                         help="search to run; repeat for several (default: bfs and ehc)")
-    parser.add_argument("--plan-out", type=Path, metavar="FILE",
+    parser.add_argument("--plan-out", metavar="FILE",
                         help="write the last requested planner's plan in IPC form")
     parser.add_argument("--json", action="store_true", help="print one JSON document")
     parser.add_argument("--timeout", type=float, metavar="S",
@@ -116,13 +116,17 @@ def _print_result(result: SearchResult) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    plan_out = None
     if args.plan_out is not None:
-        check_output_file(args.plan_out, "--plan-out")
-    started = time.perf_counter()
-    from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_for, find_problem  # on use: start-up cost
+        from pathlib import Path  # on use: the start-up of a run without --plan-out works on strings
 
-    problem = find_problem(args.problem or DEFAULT_PROBLEM)
-    task = load_task_cached(problem, args.domain if args.domain else domain_for(problem))
+        plan_out = Path(args.plan_out)
+        check_output_file(plan_out, "--plan-out")
+    started = time.perf_counter()
+    from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_file_for, find_problem_file  # start-up cost
+
+    problem = find_problem_file(args.problem or DEFAULT_PROBLEM)
+    task = load_task_cached(problem, args.domain if args.domain else domain_file_for(problem))
     ground_seconds = time.perf_counter() - started
     if args.timeout is not None and args.timeout <= 0:
         raise PlanningInputError("--timeout must be a positive number of seconds")
@@ -142,10 +146,10 @@ def run(args: argparse.Namespace) -> int:
         if not args.json:
             _print_result(result)
     last = results[-1]
-    if args.plan_out is not None and last.plan is not None:
+    if plan_out is not None and last.plan is not None:
         from kitchen_tamp.atomic_files import write_atomically  # tempfile: imported only when writing
 
-        write_atomically(args.plan_out, plan_text(last.plan))
+        write_atomically(plan_out, plan_text(last.plan))
     if args.json:
         import json  # only for --json
 
@@ -161,8 +165,8 @@ def run(args: argparse.Namespace) -> int:
     failed = [r for r in results if not r.solved]
     for result in failed:
         print(f"{result.planner}: {result.message}", file=sys.stderr)
-    if args.plan_out is not None and last.plan is None:
-        print(f"{args.plan_out}: not written, {last.planner} found no plan", file=sys.stderr)
+    if plan_out is not None and last.plan is None:
+        print(f"{plan_out}: not written, {last.planner} found no plan", file=sys.stderr)
     return int(ExitCode.NO_PLAN if failed else ExitCode.SOLVED)
 
 

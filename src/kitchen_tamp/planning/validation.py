@@ -2,21 +2,27 @@
 
 from __future__ import annotations
 
-import re
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
-
+from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.task import Atom, GroundAction, State, Task, atom_text, bits
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
 
 PlanStep = tuple[str, tuple[str, ...]]
 
 
-@dataclass(frozen=True)
-class PlanValidation:
+class PlanValidation(FrozenRecord):
+    """Whether a plan is valid, why not, the state it ends in and the step that failed (1-based)."""
+
+    __slots__ = ("valid", "message", "final_state", "failed_step")  # noqa: RUF023 (the order of __init__)
     valid: bool
     message: str
     final_state: State
-    failed_step: int | None = None  # 1-based
+    failed_step: int | None
+
+    def __init__(self, valid: bool, message: str, final_state: State, failed_step: int | None = None) -> None:
+        self._set_fields(valid=valid, message=message, final_state=final_state, failed_step=failed_step)
 
 
 def _as_step(step: GroundAction | PlanStep) -> PlanStep:
@@ -74,16 +80,20 @@ def plan_text(plan: Sequence[GroundAction]) -> str:
     return "\n".join(lines) + "\n"
 
 
-_STEP = re.compile(r"^\s*\(([^()]+)\)\s*(;.*)?$")
+PLAN_STEP_PATTERN = r"^\s*\(([^()]+)\)\s*(;.*)?$"
+"""One plan-file line: ``(name arg ...)`` and an optional ``;`` comment."""
 
 
 def parse_plan_text(text: str) -> list[PlanStep]:
     """Read an IPC plan file: ``(name arg ...)`` lines; ``;`` comments and blank lines skipped."""
+    import re  # on use: the planner's start-up does without it
+
+    step = re.compile(PLAN_STEP_PATTERN)
     steps: list[PlanStep] = []
     for number, line in enumerate(text.splitlines(), start=1):
         if not line.strip() or line.lstrip().startswith(";"):
             continue
-        match = _STEP.match(line)
+        match = step.match(line)
         if match is None:
             raise ValueError(f"line {number}: expected '(action arg ...)', got {line.strip()!r}")
         name, *args = match.group(1).split()
