@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 import sys
-from enum import IntEnum
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
     from collections.abc import Callable
 
 
-class ExitCode(IntEnum):
-    """Exit codes shared by both command-line programs."""
+class ExitCode:
+    """Exit codes shared by both command-line programs.
+
+    Plain ints, not an ``IntEnum``: ``enum`` (with ``functools`` and ``collections``)
+    would be a few milliseconds of every activity planner start.
+    """
 
     SOLVED = 0
     NO_PLAN = 1  # no plan exists, or refinement/search failed within its budget

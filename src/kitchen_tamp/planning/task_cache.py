@@ -24,7 +24,6 @@ entries are kept (the least recently used go first), each at most
 
 from __future__ import annotations
 
-import contextlib
 import marshal
 import os
 import sys
@@ -168,8 +167,12 @@ def _read_entry(entry: str, key: str) -> Task | None:
         task = decode_task(fields)
     except Exception:  # missing, unreadable, truncated, corrupt or another layout: a miss
         return None
-    with contextlib.suppress(OSError):  # recently used; a read-only directory just keeps the old time
+    # Recently used; a read-only directory just keeps the old time. Not contextlib.suppress: one
+    # more import on every start.
+    try:  # noqa: SIM105
         os.utime(entry)
+    except OSError:
+        pass
     return task
 
 
@@ -177,7 +180,8 @@ def _write_entry(entry: str, key: str, task: Task) -> None:
     data = marshal.dumps((key, encode_task(task)))
     if len(data) > MAX_ENTRY_BYTES:
         return
-    from pathlib import Path  # with tempfile (write_atomically): only on a miss
+    import contextlib  # these three, with tempfile (write_atomically): only on a miss
+    from pathlib import Path
 
     from kitchen_tamp.atomic_files import write_atomically
 
@@ -188,6 +192,8 @@ def _write_entry(entry: str, key: str, task: Task) -> None:
 
 def _evict(directory: str) -> None:
     """Remove the least recently used entries beyond ``MAX_ENTRIES``."""
+    import contextlib
+
     entries = []
     with os.scandir(directory) as found:
         for item in found:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
 from itertools import pairwise
 
 from kitchen_tamp.planning.frozen_record import FrozenRecord
@@ -11,7 +10,8 @@ from kitchen_tamp.planning.task import GroundAction, State, Task
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
-    from typing import Literal
+    from collections.abc import Mapping
+    from typing import Literal, TypeAlias
 
     SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
 """``unsolvable``: the reachable states were exhausted without a goal (a proof);
@@ -43,7 +43,7 @@ class SearchResult(FrozenRecord):
         return self.status == "solved"
 
 
-StateParents = Mapping[State, State | None]
+StateParents: TypeAlias = "Mapping[State, State | None]"  # a string: collections.abc is not loaded here
 """Each reached state's parent (None at the root); the actions are recovered afterwards."""
 
 
