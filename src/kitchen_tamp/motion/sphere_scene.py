@@ -156,6 +156,13 @@ class ObstacleBoxes:
     owners: tuple[tuple[str, str], ...]
 
 
+def _riding_links(groups: list[SphereGroup], fine: bool) -> IndexArray:
+    """Per sphere of one level, the robot link it rides on."""
+    ranges = [g.fine_spheres if fine else g.spheres for g in groups]
+    counts = [r.stop - r.start for r in ranges]
+    return np.repeat(np.array([g.robot_link for g in groups], dtype=np.intp), counts)
+
+
 class SphereScene:
     """The geometry and the checked pairs of one scene snapshot."""
 
@@ -225,16 +232,12 @@ class SphereScene:
         self.sphere_centers: FloatArray = merged.centers
         """(S, 3) sphere centres in the frame of the robot link each rides on."""
         self.sphere_radii: FloatArray = merged.radii
-        self.sphere_links: IndexArray = np.concatenate(
-            [np.full(g.spheres.stop - g.spheres.start, g.robot_link) for g in groups]
-        ).astype(np.intp)
+        self.sphere_links: IndexArray = _riding_links(groups, fine=False)
         merged_fine = SphereSet.concatenate(fine)
         self.fine_centers: FloatArray = merged_fine.centers
         """(F, 3) the tight covering's sphere centres (the fine level), as ``sphere_centers``."""
         self.fine_radii: FloatArray = merged_fine.radii
-        self.fine_links: IndexArray = np.concatenate(
-            [np.full(g.fine_spheres.stop - g.fine_spheres.start, g.robot_link) for g in groups]
-        ).astype(np.intp)
+        self.fine_links: IndexArray = _riding_links(groups, fine=True)
         self.groups = tuple(groups)
         self.boxes = self._obstacle_boxes(scene, set(carried))
         self.group_box_pairs, self.group_pairs = self._checked_pairs(scene)
