@@ -16,6 +16,7 @@ colliding the model finds colliding; the reverse may not hold near contact.
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 import numpy as np
@@ -59,6 +60,13 @@ class SphereCollisionChecker:
         self.segment_resolution = float(segment_resolution)
         self._segments = CountingSegmentChecker(self, segment_resolution)
         self._kernel_arguments = self._arrays()
+
+    def with_margin(self, margin: float) -> SphereCollisionChecker:
+        """The same model keeping ``margin`` instead (sharing the scene and the kernel's arrays)."""
+        twin = copy.copy(self)
+        twin.margin = float(margin)
+        twin._segments = CountingSegmentChecker(twin, self.segment_resolution)
+        return twin
 
     def _arrays(self) -> tuple[Any, ...]:
         model, layout = self.model, self.model.tree.flat_layout()

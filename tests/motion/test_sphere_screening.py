@@ -1,0 +1,99 @@
+"""Spheres in front of an exact model in the real kitchen: verdicts are the exact model's (Drake's
+or PyBullet's), and a batch's first collision is found without asking the exact model about the
+rows after it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kitchen_tamp.kitchen import KitchenScene
+from kitchen_tamp.motion import CountingSegmentChecker
+from kitchen_tamp.motion.collision_checker import JointConfigurations, ValidityMask
+from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+from kitchen_tamp.world import PyBulletCollisionChecker
+from kitchen_tamp.world.scene_description import describe_collision_checker
+
+PLANNING_MARGIN = 0.003
+
+
+class CountingExact:
+    """An exact model that counts the configurations it is asked about."""
+
+    def __init__(self, exact: DrakeCollisionChecker) -> None:
+        self.exact = exact
+        self.asked = 0
+
+    def is_valid(self, qs: JointConfigurations) -> ValidityMask:
+        self.asked += len(qs)
+        return self.exact.is_valid(qs)
+
+    def segment_valid(self, q0: np.ndarray, q1: np.ndarray) -> bool:
+        return self.exact.segment_valid(q0, q1)
+
+
+@pytest.fixture(scope="module")
+def pybullet(kitchen: KitchenScene) -> PyBulletCollisionChecker:
+    return kitchen.collision_checker()
+
+
+@pytest.fixture(scope="module")
+def spheres(pybullet: PyBulletCollisionChecker) -> SphereCollisionChecker:
+    return SphereCollisionChecker(describe_collision_checker(pybullet), margin=PLANNING_MARGIN)
+
+
+@pytest.fixture(scope="module")
+def drake(pybullet: PyBulletCollisionChecker) -> DrakeCollisionChecker:
+    return DrakeCollisionChecker(describe_collision_checker(pybullet), margin=PLANNING_MARGIN)
+
+
+def test_first_invalid_is_the_exact_models_first_collision_and_asks_no_further(
+    spheres: SphereCollisionChecker, drake: DrakeCollisionChecker
+) -> None:
+    counting = CountingExact(drake)
+    screened = SphereScreenedChecker(spheres, counting)
+    rng = np.random.default_rng(11)
+    found = 0
+    for _ in range(30):
+        qs = rng.uniform(drake.lower, drake.upper, size=(6, 7))
+        exact = drake.is_valid(qs)
+        expected = None if exact.all() else int(np.argmin(exact))
+        counting.asked = 0
+        assert screened.first_invalid(qs) == expected
+        rejected = np.flatnonzero(~spheres.is_valid(qs))
+        asked = len(rejected) if expected is None else int(np.searchsorted(rejected, expected)) + 1
+        assert counting.asked == asked
+        found += expected is not None
+    assert 0 < found < 30
+
+
+def test_segment_checks_through_the_finder_match_whole_batch_verdicts(
+    spheres: SphereCollisionChecker, drake: DrakeCollisionChecker
+) -> None:
+    screened = SphereScreenedChecker(spheres, drake)
+    finder, whole = CountingSegmentChecker(screened, 0.01), CountingSegmentChecker(drake, 0.01)
+    rng = np.random.default_rng(12)
+    q0s = rng.uniform(drake.lower, drake.upper, size=(40, 7))
+    q0s = q0s[drake.is_valid(q0s)][:12]
+    q1s = q0s + rng.normal(scale=0.6, size=q0s.shape)
+    q1s = np.clip(q1s, drake.lower, drake.upper)
+    verdicts = []
+    for q0, q1 in zip(q0s, q1s, strict=True):
+        verdicts.append(finder.segment_valid(q0, q1))
+        assert verdicts[-1] == whole.segment_valid(q0, q1)
+        assert finder.free_prefix_length(q0, q1) == whole.free_prefix_length(q0, q1)
+    assert finder.configurations_checked == whole.configurations_checked
+    assert any(verdicts) and not all(verdicts)
+
+
+def test_spheres_at_the_simulators_margin_screen_pybullet_to_its_own_verdicts(
+    spheres: SphereCollisionChecker, pybullet: PyBulletCollisionChecker
+) -> None:
+    screened = SphereScreenedChecker(spheres.with_margin(pybullet.margin), pybullet)
+    qs = np.random.default_rng(13).uniform(pybullet.lower, pybullet.upper, size=(300, 7))
+    verdicts = screened.is_valid(qs)
+    assert verdicts.tolist() == pybullet.is_valid(qs).tolist()
+    assert 0 < screened.exact_checks < len(qs)
+    assert spheres.margin == PLANNING_MARGIN  # the twin did not change the planning model
