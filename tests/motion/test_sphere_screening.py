@@ -97,3 +97,17 @@ def test_spheres_at_the_simulators_margin_screen_pybullet_to_its_own_verdicts(
     assert verdicts.tolist() == pybullet.is_valid(qs).tolist()
     assert 0 < screened.exact_checks < len(qs)
     assert spheres.margin == PLANNING_MARGIN  # the twin did not change the planning model
+
+
+def test_exact_verdicts_are_remembered_by_configuration(
+    spheres: SphereCollisionChecker, drake: DrakeCollisionChecker
+) -> None:
+    counting = CountingExact(drake)
+    screened = SphereScreenedChecker(spheres, counting)
+    qs = np.random.default_rng(14).uniform(drake.lower, drake.upper, size=(40, 7))
+    first = screened.is_valid(qs)
+    asked = counting.asked
+    assert asked == int(np.count_nonzero(~spheres.is_valid(qs))) > 0
+    assert screened.is_valid(qs).tolist() == first.tolist() == drake.is_valid(qs).tolist()
+    assert screened.first_invalid(qs) == (None if first.all() else int(np.argmin(first)))
+    assert counting.asked == asked == screened.exact_checks

@@ -38,6 +38,11 @@ class ExactModel(CollisionChecker, Protocol):
 
 Exact = TypeVar("Exact", bound=CollisionChecker)
 
+REMEMBERED_VERDICTS = 256
+"""Exact verdicts a screened checker remembers, by configuration (oldest forgotten first): a move's
+start and goal are asked about again and again (before planning, by the planner, by the dense
+post-check), and near contact the spheres reject them every time."""
+
 
 class SphereScreenedChecker(Generic[Exact]):
     """``spheres`` first; the configurations they reject are checked again by ``exact``, which
@@ -54,16 +59,32 @@ class SphereScreenedChecker(Generic[Exact]):
         self.exact_seconds = 0.0
         """Wall-clock seconds the exact model took so far."""
         self._segments = CountingSegmentChecker(self, spheres.segment_resolution)
+        self._verdicts: dict[bytes, bool] = {}
+
+    def _exact_verdicts(self, qs: JointConfigurations) -> ValidityMask:
+        """The exact model's verdicts on the rows of ``qs``; remembered ones are not asked again."""
+        keys = [q.tobytes() for q in qs]
+        unknown = [row for row, key in enumerate(keys) if key not in self._verdicts]
+        if unknown:
+            clock = time.perf_counter()
+            self.exact_checks += len(unknown)
+            answers = self.exact.is_valid(qs[unknown])
+            self.exact_seconds += time.perf_counter() - clock
+            for row, answer in zip(unknown, answers.tolist(), strict=True):
+                self._remember(keys[row], bool(answer))
+        return np.array([self._verdicts[key] for key in keys], dtype=np.bool_)
+
+    def _remember(self, key: bytes, verdict: bool) -> None:
+        if len(self._verdicts) >= REMEMBERED_VERDICTS:
+            del self._verdicts[next(iter(self._verdicts))]
+        self._verdicts[key] = verdict
 
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         batch = np.atleast_2d(np.asarray(qs, dtype=float))
         valid = self.spheres.is_valid(batch)
         rejected = np.flatnonzero(~valid)
         if len(rejected):
-            clock = time.perf_counter()
-            self.exact_checks += len(rejected)
-            valid[rejected] = self.exact.is_valid(batch[rejected])
-            self.exact_seconds += time.perf_counter() - clock
+            valid[rejected] = self._exact_verdicts(batch[rejected])
         return valid
 
     def first_invalid(self, qs: JointConfigurations) -> int | None:
@@ -71,17 +92,10 @@ class SphereScreenedChecker(Generic[Exact]):
         spheres reject in order, stopping at the first it confirms (segment checks need no more)."""
         batch = np.atleast_2d(np.asarray(qs, dtype=float))
         rejected = np.flatnonzero(~self.spheres.is_valid(batch))
-        if len(rejected) == 0:
-            return None
-        clock = time.perf_counter()
-        try:
-            for index in rejected:
-                self.exact_checks += 1
-                if not self.exact.is_valid(batch[index : index + 1])[0]:
-                    return int(index)
-            return None
-        finally:
-            self.exact_seconds += time.perf_counter() - clock
+        for index in rejected.tolist():
+            if not self._exact_verdicts(batch[index : index + 1])[0]:
+                return int(index)
+        return None
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
