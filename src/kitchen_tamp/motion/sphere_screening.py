@@ -91,8 +91,10 @@ class SphereScreenedChecker(Generic[Exact]):
         """Index of the first invalid row, or None: the exact model is asked about the rows the
         spheres reject in order, stopping at the first it confirms (segment checks need no more)."""
         batch = np.atleast_2d(np.asarray(qs, dtype=float))
-        rejected = np.flatnonzero(~self.spheres.is_valid(batch))
-        for index in rejected.tolist():
+        valid = self.spheres.is_valid(batch)
+        if valid.all():
+            return None
+        for index in np.flatnonzero(~valid).tolist():
             if not self._exact_verdicts(batch[index : index + 1])[0]:
                 return int(index)
         return None
