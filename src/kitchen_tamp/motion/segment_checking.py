@@ -10,6 +10,7 @@ asked for that instead of every configuration's verdict.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Protocol, runtime_checkable
 
@@ -27,13 +28,14 @@ FIRST_BATCH_SIZE = 16
 """Interior configurations checked in the first batch; later batches double."""
 
 
-def _batches(count: int) -> list[slice]:
+@functools.lru_cache(maxsize=4096)
+def _batches(count: int) -> tuple[slice, ...]:
     batches = []
     start, size = 0, FIRST_BATCH_SIZE
     while start < count:
         batches.append(slice(start, min(count, start + size)))
         start, size = start + size, size * 2
-    return batches
+    return tuple(batches)
 
 
 @runtime_checkable

@@ -95,9 +95,21 @@ class SphereScreenedChecker(Generic[Exact]):
         if valid.all():
             return None
         for index in np.flatnonzero(~valid).tolist():
-            if not self._exact_verdicts(batch[index : index + 1])[0]:
+            if not self._exact_valid(batch[index]):
                 return int(index)
         return None
+
+    def _exact_valid(self, q: JointConfiguration) -> bool:
+        """The exact model's verdict on one configuration, remembered."""
+        key = q.tobytes()
+        verdict = self._verdicts.get(key)
+        if verdict is None:
+            clock = time.perf_counter()
+            self.exact_checks += 1
+            verdict = bool(self.exact.is_valid(q[np.newaxis])[0])
+            self.exact_seconds += time.perf_counter() - clock
+            self._remember(key, verdict)
+        return verdict
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
