@@ -1,6 +1,6 @@
 """Spheres in front of an exact model in the real kitchen: verdicts are the exact model's (Drake's
-or PyBullet's), and a batch's first collision is found without asking the exact model about the
-rows after it."""
+or PyBullet's), a batch's first collision is found without asking the exact model about the rows
+after it, and against Drake's bare meshes the spheres' mesh padding is taken back soundly."""
 
 from __future__ import annotations
 
@@ -12,7 +12,10 @@ from kitchen_tamp.motion import CountingSegmentChecker
 from kitchen_tamp.motion.collision_checker import JointConfigurations, ValidityMask
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_covering import SphereSet, covering_slack, sample_polytope
+from kitchen_tamp.motion.sphere_scene import PYBULLET_MESH_MARGIN, shape_polytope
 from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+from kitchen_tamp.motion.sphere_urdf import read_urdf
 from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -111,3 +114,55 @@ def test_exact_verdicts_are_remembered_by_configuration(
     assert screened.is_valid(qs).tolist() == first.tolist() == drake.is_valid(qs).tolist()
     assert screened.first_invalid(qs) == (None if first.all() else int(np.argmin(first)))
     assert counting.asked == asked == screened.exact_checks
+
+
+def near_drakes_contact(drake: DrakeCollisionChecker, count: int, rng: np.random.Generator) -> np.ndarray:
+    """Configurations on both sides of Drake's margin, bisected between a valid and an invalid sample."""
+    qs = rng.uniform(drake.lower, drake.upper, size=(4 * count, 7))
+    valid = drake.is_valid(qs)
+    count = min(count, int(valid.sum()), int((~valid).sum()))
+    free, colliding = qs[valid][:count], qs[~valid][:count]
+    for _ in range(10):
+        middle = (free + colliding) / 2.0
+        middle_valid = drake.is_valid(middle)
+        free = np.where(middle_valid[:, None], middle, free)
+        colliding = np.where(middle_valid[:, None], colliding, middle)
+    return np.concatenate([free, colliding])
+
+
+def test_the_padding_taken_back_was_added_to_cover_the_hulls(
+    spheres: SphereCollisionChecker, pybullet: PyBulletCollisionChecker
+) -> None:
+    model, robot = spheres.model, read_urdf(kitchen_robot_urdf(pybullet))
+    rng = np.random.default_rng(15)
+    robot_groups = [g for g, group in enumerate(model.groups) if group.role != "carried"]
+    assert robot_groups and all(spheres.padding[g] == PYBULLET_MESH_MARGIN for g in robot_groups)
+    for g in robot_groups:
+        group = model.groups[g]
+        radii = model.sphere_radii[group.spheres] - spheres.padding[g]
+        bare = SphereSet(model.sphere_centers[group.spheres], radii)
+        for shape in robot.collisions:
+            if shape.link == group.link:
+                assert covering_slack(bare, sample_polytope(shape_polytope(shape), 400, rng)) >= -1e-9
+
+
+def kitchen_robot_urdf(pybullet: PyBulletCollisionChecker) -> str:
+    description = describe_collision_checker(pybullet)
+    return next(body.urdf_path for body in description.bodies if body.name == description.robot)
+
+
+def test_without_padding_the_spheres_never_accept_what_drake_rejects(
+    spheres: SphereCollisionChecker, drake: DrakeCollisionChecker
+) -> None:
+    rng = np.random.default_rng(16)
+    random = rng.uniform(drake.lower, drake.upper, size=(1500, 7))
+    taken_back = 0
+    for qs in (near_drakes_contact(drake, 150, rng), random):
+        exact, bare, padded = drake.is_valid(qs), spheres.is_valid_without_padding(qs), spheres.is_valid(qs)
+        assert not np.any(bare & ~exact)
+        assert np.all(bare | ~padded)  # taking the padding back only accepts more
+        taken_back += int(np.count_nonzero(bare & ~padded))
+    assert taken_back > 0
+    screened = SphereScreenedChecker(spheres, drake, exact_is_bare=True)
+    assert screened.is_valid(qs).tolist() == exact.tolist()
+    assert screened.exact_checks < np.count_nonzero(~padded)

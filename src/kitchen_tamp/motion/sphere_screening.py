@@ -49,9 +49,12 @@ class SphereScreenedChecker(Generic[Exact]):
     (when it measures distance) also answers distance queries, so trajectory optimisation
     sees the exact model."""
 
-    def __init__(self, spheres: SphereCollisionChecker, exact: Exact) -> None:
+    def __init__(self, spheres: SphereCollisionChecker, exact: Exact, *, exact_is_bare: bool = False) -> None:
         self.spheres = spheres
         self.exact = exact
+        self.exact_is_bare = exact_is_bare
+        """Whether ``exact`` measures the bare collision hulls (Drake; not PyBullet, whose meshes carry
+        a margin): then a row the spheres reject only by their mesh padding is valid without asking."""
         self.lower: JointConfiguration = spheres.lower
         self.upper: JointConfiguration = spheres.upper
         self.exact_checks = 0
@@ -63,16 +66,27 @@ class SphereScreenedChecker(Generic[Exact]):
 
     def _exact_verdicts(self, qs: JointConfigurations) -> ValidityMask:
         """The exact model's verdicts on the rows of ``qs``; remembered ones are not asked again."""
+        if self.exact_is_bare:
+            bare = self.spheres.is_valid_without_padding(qs)
+            if bare.any():
+                verdicts = bare.copy()
+                verdicts[~bare] = self._exact_verdicts_asked(qs[~bare])
+                return verdicts
+        return self._exact_verdicts_asked(qs)
+
+    def _exact_verdicts_asked(self, qs: JointConfigurations) -> ValidityMask:
         keys = [q.tobytes() for q in qs]
-        unknown = [row for row, key in enumerate(keys) if key not in self._verdicts]
+        verdicts = [self._verdicts.get(key) for key in keys]
+        unknown = [row for row, verdict in enumerate(verdicts) if verdict is None]
         if unknown:
             clock = time.perf_counter()
             self.exact_checks += len(unknown)
             answers = self.exact.is_valid(qs[unknown])
             self.exact_seconds += time.perf_counter() - clock
             for row, answer in zip(unknown, answers.tolist(), strict=True):
+                verdicts[row] = bool(answer)
                 self._remember(keys[row], bool(answer))
-        return np.array([self._verdicts[key] for key in keys], dtype=np.bool_)
+        return np.array(verdicts, dtype=np.bool_)
 
     def _remember(self, key: bytes, verdict: bool) -> None:
         if len(self._verdicts) >= REMEMBERED_VERDICTS:
@@ -94,7 +108,10 @@ class SphereScreenedChecker(Generic[Exact]):
         valid = self.spheres.is_valid(batch)
         if valid.all():
             return None
-        for index in np.flatnonzero(~valid).tolist():
+        rejected = np.flatnonzero(~valid)
+        if self.exact_is_bare:
+            rejected = rejected[~self.spheres.is_valid_without_padding(batch[rejected])]
+        for index in rejected.tolist():
             if not self._exact_valid(batch[index]):
                 return int(index)
         return None

@@ -48,7 +48,7 @@ def planning_checker(
         from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 
         spheres = SphereCollisionChecker(description, margin=margin)
-        return SphereScreenedChecker(spheres, drake)
+        return SphereScreenedChecker(spheres, drake, exact_is_bare=True)
     if model == "pybullet":
         with kitchen.scene.preserved():
             kitchen.robot.set_gripper_width(targets.gripper_width)
