@@ -139,11 +139,15 @@ def test_the_padding_taken_back_was_added_to_cover_the_hulls(
     assert robot_groups and all(spheres.padding[g] == PYBULLET_MESH_MARGIN for g in robot_groups)
     for g in robot_groups:
         group = model.groups[g]
-        radii = model.sphere_radii[group.spheres] - spheres.padding[g]
-        bare = SphereSet(model.sphere_centers[group.spheres], radii)
-        for shape in robot.collisions:
-            if shape.link == group.link:
-                assert covering_slack(bare, sample_polytope(shape_polytope(shape), 400, rng)) >= -1e-9
+        for centers, radii in (  # both levels: the coarse spheres and the tight (fine) covering
+            (model.sphere_centers[group.spheres], model.sphere_radii[group.spheres]),
+            (model.fine_centers[group.fine_spheres], model.fine_radii[group.fine_spheres]),
+        ):
+            assert len(radii) > 0
+            bare = SphereSet(centers, radii - spheres.padding[g])
+            for shape in robot.collisions:
+                if shape.link == group.link:
+                    assert covering_slack(bare, sample_polytope(shape_polytope(shape), 400, rng)) >= -1e-9
 
 
 def kitchen_robot_urdf(pybullet: PyBulletCollisionChecker) -> str:
