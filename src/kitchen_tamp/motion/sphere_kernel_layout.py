@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.sphere_pair_tables import PairTables, no_tables
 from kitchen_tamp.motion.sphere_scene import SphereScene
 
 FloatArray = npt.NDArray[np.float64]
@@ -81,8 +82,12 @@ class _Tree:
         return node
 
 
-def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
-    """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``."""
+def kernel_arguments(
+    scene: SphereScene, lower: FloatArray, upper: FloatArray, tables: PairTables | None = None
+) -> tuple[Any, ...]:
+    """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``; the checked
+    pairs are last (``group_box_pairs``, then ``group_pairs`` with each pair's table or -1)."""
+    tables = no_tables(len(scene.group_pairs)) if tables is None else tables
     layout = scene.tree.flat_layout()
     group_centers, group_radii = [], []
     for group in scene.groups:
@@ -133,6 +138,7 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
         np.ascontiguousarray(boxes.half_extents),
         boxes.centers - reach,
         boxes.centers + reach,
+        *tables.kernel_arguments(),
         indices(_likely_first(scene, scene.group_box_pairs)).reshape(-1, 2),
-        indices(scene.group_pairs).reshape(-1, 2),
+        np.column_stack([indices(scene.group_pairs).reshape(-1, 2), tables.pair_tables]).astype(np.int64),
     )

@@ -251,6 +251,25 @@ def _trees_touch(
     return False
 
 
+@numba.njit(cache=True, fastmath=True, inline="always")
+def _table_cell(
+    q: FloatArray,
+    t: int,
+    variables: npt.NDArray[np.int64],
+    lows: FloatArray,
+    steps: FloatArray,
+    counts: npt.NDArray[np.int64],
+) -> int:
+    """Row-major index in table ``t`` of the cell holding ``q``'s two joint values (clamped to the
+    grid: a value a hair outside the limits belongs to the border cell)."""
+    index = 0
+    for axis in range(2):
+        cell = int(np.floor((q[variables[t, axis]] - lows[t, axis]) / steps[t, axis]))
+        cell = min(max(cell, 0), counts[t, axis] - 1)
+        index = index * counts[t, axis] + cell
+    return index
+
+
 @numba.njit(cache=True, fastmath=True)
 def valid_configurations(
     qs: FloatArray,
@@ -285,6 +304,13 @@ def valid_configurations(
     box_halves: FloatArray,
     box_lows: FloatArray,
     box_highs: FloatArray,
+    table_variables: npt.NDArray[np.int64],
+    table_lows: FloatArray,
+    table_steps: FloatArray,
+    table_counts: npt.NDArray[np.int64],
+    table_offsets: npt.NDArray[np.int64],
+    table_cells: npt.NDArray[np.int8],
+    table_margin: float,
     group_box_pairs: npt.NDArray[np.int64],
     group_pairs: npt.NDArray[np.int64],
     margin: float,
@@ -295,8 +321,16 @@ def valid_configurations(
     pair when none comes within the margin; only a pair the coarse level cannot clear is opened
     at the fine level, each group's tight spheres a binary tree of bounding spheres
     (``node_children`` -1 at a leaf, whose spheres are ``node_first:node_last``). Both levels
-    cover the same shapes, so the verdict is the fine level's."""
+    cover the same shapes, so the verdict is the fine level's.
+
+    ``group_pairs`` (P, 3) names each pair's table (`sphere_pair_tables`) in its third column, or
+    -1. Tables are read first, from the configuration's joints alone: a pair its table proves
+    colliding in the configuration's cell (1: clear, -1: colliding, 0: unknown) makes the row
+    invalid before any kinematics (when ``margin`` is no smaller than the tables' ``table_margin``),
+    and a pair it proves clear is skipped (when ``margin`` is no larger)."""
     count = qs.shape[0]
+    clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
+    pair_state = np.zeros(group_pairs.shape[0], dtype=np.int8)
     valid = np.ones(count, dtype=np.bool_)
     poses = np.empty((parents.shape[0], 4, 4))
     motion, frame = np.empty((4, 4)), np.empty((4, 4))
@@ -313,6 +347,21 @@ def valid_configurations(
         for j in range(qs.shape[1]):
             if qs[m, j] < lower[j] - tolerance or qs[m, j] > upper[j] + tolerance:
                 valid[m] = False
+        if not valid[m]:
+            continue
+        for k in range(group_pairs.shape[0]):
+            t = group_pairs[k, 2]
+            pair_state[k] = 0
+            if t >= 0:
+                state = table_cells[
+                    table_offsets[t]
+                    + _table_cell(qs[m], t, table_variables, table_lows, table_steps, table_counts)
+                ]
+                if (state > 0 and clear_usable) or (state < 0 and colliding_usable):
+                    pair_state[k] = state
+                if pair_state[k] < 0:
+                    valid[m] = False
+                    break
         if not valid[m]:
             continue
         _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
@@ -371,6 +420,8 @@ def valid_configurations(
             continue
         for k in range(group_pairs.shape[0]):
             g, h = group_pairs[k, 0], group_pairs[k, 1]
+            if pair_state[k] > 0:
+                continue
             if _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= margin:
                 continue
             coarse_hit = False
