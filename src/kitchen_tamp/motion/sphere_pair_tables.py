@@ -94,7 +94,10 @@ def no_tables(pairs: int, margin: float = -np.inf) -> PairTables:
 
 def _two_joints(scene: SphereScene, g: int, h: int) -> tuple[int, int, int, int] | None:
     """(ancestor group, descendant group, nearer joint, farther joint) when exactly two revolute
-    variable joints place group ``h``'s link relative to group ``g``'s, else None."""
+    variable joints place group ``h``'s link relative to group ``g``'s, else None. Carried bodies get
+    no table: a grasp is sampled anew each time, so a table would be proved for one checker only."""
+    if "carried" in (scene.groups[g].role, scene.groups[h].role):
+        return None
     depends = scene.tree.depends
     a, b = scene.groups[g].robot_link, scene.groups[h].robot_link
     if np.all(depends[a] <= depends[b]):
@@ -135,10 +138,15 @@ def _cache_key(
     margin: float,
     steps: FloatArray,
 ) -> str:
+    """The pair's spheres and the joints from one link to the other (not where the robot stands nor
+    its other joints: they do not move one link relative to the other)."""
     digest = hashlib.sha256(PAIR_TABLE_VERSION.encode())
     layout = scene.tree.flat_layout()
-    for array in (layout.root, layout.parents, layout.origins, layout.held, layout.kinds, layout.axes):
-        digest.update(np.ascontiguousarray(array).tobytes())
+    link, stop = scene.groups[far].robot_link, scene.groups[near].robot_link
+    while link not in (stop, -1):
+        for array in (layout.origins[link], layout.held[link], layout.kinds[link], layout.axes[link]):
+            digest.update(np.ascontiguousarray(array).tobytes())
+        link = int(layout.parents[link])
     for g in (near, far):
         group = scene.groups[g]
         digest.update(np.asarray([group.robot_link], dtype=np.int64).tobytes())
