@@ -129,3 +129,10 @@ def test_additive_costs_and_supporters_match_a_fixpoint_reference(small_task: Ta
                     action = small_task.actions[supporter[atom]]
                     assert atom in action.add_ids
                     assert 1 + sum(reference[p] for p in action.pre_ids) == expected
+
+
+def test_additive_costs_repeat_with_a_larger_weight_when_costs_come_near_it(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task, "hadd")
+    for state in reachable_states(small_task):
+        # A weight of 2 is below most sums of costs: the exploration must notice and redo.
+        assert exploration.additive_costs(state, unsettled=2) == exploration.additive_costs(state)

@@ -42,6 +42,12 @@ TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every 
 
 INFINITY = float("inf")
 
+UNSETTLED = 1 << 40
+"""In ``additive_costs``, the weight of one unsettled precondition, which must exceed every sum of costs.
+
+If some cost reaches ``UNSETTLED`` divided by the most preconditions of an
+action (only in contrived tasks), the exploration is repeated with its square."""
+
 if TYPE_CHECKING:
     from typing import Literal
 
@@ -128,10 +134,13 @@ class RelaxedExploration:
                 users[atom].append(index)
         self.relevant_users = [tuple(u) for u in users]
         self.relevant_precondition_count = [len(p) for p in self.preconditions_of]
+        self.most_preconditions = max(self.relevant_precondition_count, default=1) or 1
+        self.relevant_pending = [count * UNSETTLED for count in self.relevant_precondition_count]
         self.relevant_free_actions = [i for i in relevant if not self.preconditions_of[i]]
         self.unsolvable = task.trivially_unsolvable
 
-    def additive_costs(self, state: State) -> tuple[list[float], list[int]] | None:
+    def additive_costs(self, state: State,
+                       unsettled: int = UNSETTLED) -> tuple[list[float], list[int]] | None:
         """h_add cost of the atoms from ``state`` and each one's best supporter (-1: none).
 
         A generalised Dijkstra over atoms with unit action costs, so the queue
@@ -143,12 +152,16 @@ class RelaxedExploration:
         cost is the supporter. Only relevant actions take part, and it stops
         when every goal atom is settled (atoms settled later keep their
         offers, unsettled ones infinity). None if some goal atom is
-        relaxed-unreachable.
+        relaxed-unreachable. ``unsettled`` (at least 2): see ``UNSETTLED``.
         """
         cost: list[float] = [INFINITY] * self.n_atoms
         supporter = [-1] * self.n_atoms
-        unsatisfied = self.relevant_precondition_count.copy()
-        accumulated = [0] * len(unsatisfied)
+        # Per action, (preconditions not yet settled) * UNSETTLED + (sum of the settled ones' costs):
+        # one number to update per settled precondition; below UNSETTLED, all are settled.
+        pending = (self.relevant_pending.copy() if unsettled == UNSETTLED
+                   else [count * unsettled for count in self.relevant_precondition_count])
+        cost_limit = unsettled // self.most_preconditions
+        too_dear = False
         users, adds_of = self.relevant_users, self.adds_of
         settled_now: list[int] = []
         for atom in bits(state):
@@ -161,31 +174,35 @@ class RelaxedExploration:
                     cost[atom] = 1
                     supporter[atom] = action
                     buckets[1].append(atom)
-        open_goals = self.task.goal & ~state
-        settled = 0
+        open_goals = [g for g in self.goal_ids if not state >> g & 1]
         level = 0
         while open_goals:
             if level == len(buckets):
-                return None
+                return self.additive_costs(state, unsettled * unsettled) if too_dear else None
+            step = level - unsettled
             for atom in buckets[level]:
-                bit = 1 << atom
-                if cost[atom] != level or settled & bit:
-                    continue  # offered again at a lower cost, or already settled
-                settled |= bit
+                if cost[atom] != level:
+                    continue  # offered again at a lower cost, and settled then
                 for action in users[atom]:
-                    accumulated[action] += level
-                    unsatisfied[action] -= 1
-                    if not unsatisfied[action]:
-                        offer = accumulated[action] + 1
+                    total = pending[action] + step
+                    pending[action] = total
+                    if total < unsettled:
+                        offer = total + 1
+                        if offer >= cost_limit:
+                            too_dear = True
                         for added in adds_of[action]:
                             if offer < cost[added]:
                                 cost[added] = offer
                                 supporter[added] = action
-                                while len(buckets) <= offer:
-                                    buckets.append([])
-                                buckets[offer].append(added)
-            open_goals &= ~settled
+                                try:
+                                    buckets[offer].append(added)
+                                except IndexError:
+                                    buckets.extend([] for _ in range(offer + 1 - len(buckets)))
+                                    buckets[offer].append(added)
+            open_goals = [g for g in open_goals if cost[g] > level]
             level += 1
+        if too_dear:
+            return self.additive_costs(state, unsettled * unsettled)
         return cost, supporter
 
     def atom_layers(self, state: State) -> list[int] | None:
@@ -338,18 +355,17 @@ class RelaxedExploration:
         cost, supporter = explored
         chosen: dict[int, None] = {}
         marked = bytearray(self.n_atoms)
-        open_atoms = [g for g in self.goal_ids if cost[g] > 0.0]
+        open_atoms = list(self.goal_ids)
         preconditions_of = self.preconditions_of
         while open_atoms:
             atom = open_atoms.pop()
-            if marked[atom]:
-                continue
+            if marked[atom] or not cost[atom]:
+                continue  # handled already, or true in the state
             marked[atom] = 1
             action = supporter[atom]
-            if action in chosen:
-                continue
-            chosen[action] = None
-            open_atoms.extend(p for p in preconditions_of[action] if cost[p] > 0.0 and not marked[p])
+            if action not in chosen:
+                chosen[action] = None
+                open_atoms.extend(preconditions_of[action])
         return list(chosen)
 
     def h_ff(self, state: State) -> float:
