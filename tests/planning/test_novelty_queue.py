@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from kitchen_tamp.planning import Task, greedy_best_first_search, load_task, validate_plan
+from kitchen_tamp.planning import Task, greedy_best_first_search, validate_plan
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.search.alternating_greedy import (
     AlternatingQueues,
@@ -14,6 +14,7 @@ from kitchen_tamp.planning.search.alternating_greedy import (
     alternating_greedy_search,
 )
 from kitchen_tamp.planning.search.result import SearchBudget
+from tests.planning.conftest import written_task
 
 PLATEAU_DOMAIN = """(define (domain switch-plateau)
   (:requirements :strips)
@@ -51,12 +52,9 @@ def switch_plateau(tmp_path: Path, switches: int, road: int = 6) -> Task:
     facts = ["(at-start)", "(token)", "(road-start r0)", f"(road-end r{road - 1})"]
     facts += [f"(off s{i})" for i in range(switches)]
     facts += [f"(road-next r{i} r{i + 1})" for i in range(road - 1)]
-    objects = " ".join([f"s{i}" for i in range(switches)] + [f"r{i}" for i in range(road)])
-    problem = (f"(define (problem plateau-{switches}) (:domain switch-plateau) (:objects {objects})\n"
-               f"  (:init {' '.join(facts)})\n  (:goal (done)))\n")
-    (tmp_path / "domain.pddl").write_text(PLATEAU_DOMAIN)
-    (tmp_path / "problem.pddl").write_text(problem)
-    return load_task(tmp_path / "problem.pddl", tmp_path / "domain.pddl")
+    objects = [f"s{i}" for i in range(switches)] + [f"r{i}" for i in range(road)]
+    return written_task(tmp_path, PLATEAU_DOMAIN, "switch-plateau", f"plateau-{switches}", objects, facts,
+                        "(done)")
 
 
 def test_the_room_is_an_unseen_dead_end_below_the_road(tmp_path: Path) -> None:
