@@ -58,9 +58,6 @@ Heuristic = Callable[[State], float]
 HelpfulHeuristic = Callable[[State], tuple[float, int]]
 """h_FF with helpful actions: (h, bitset over action indices of the helpful actions)."""
 
-Graph = tuple[list[int], list[list[int]]]
-"""Relaxed planning graph: atoms new in each layer (layer 0 is the state), actions first firing in each."""
-
 
 def _relevant_actions(task: Task) -> list[int]:
     """Indices of the actions that can contribute to the goal in the relaxation, in task order."""
@@ -245,25 +242,6 @@ class RelaxedExploration:
             keys ^= low
             pending.extend(by_key[low])
         return pending
-
-    def layers(self, state: State) -> Graph | None:
-        """The relaxed planning graph from ``state`` up to the first layer with the goal.
-
-        Returns the atoms new in each layer (layer 0 is ``state``) and the
-        (relevant) actions first applicable in each layer, or None if the goal
-        is relaxed-unreachable.
-        """
-        new_atoms = self.atom_layers(state)
-        if new_atoms is None:
-            return None
-        new_actions: list[list[int]] = []
-        reached = 0
-        pending = self.entries
-        for atoms in new_atoms[:-1]:
-            reached |= atoms
-            new_actions.append([index for pre, _, index in pending if pre & reached == pre])
-            pending = [entry for entry in pending if entry[0] & reached != entry[0]]
-        return new_atoms, new_actions
 
     def h_max(self, state: State) -> float:
         if self.unsolvable:
