@@ -59,7 +59,12 @@ from kitchen_tamp.motion import (
     path_length,
 )
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.trajectory_program import SignedDistanceFunction, TrajectoryOptimizationSettings
+from kitchen_tamp.motion.trajectory_program import (
+    Clearance,
+    SignedDistanceFunction,
+    TrajectoryOptimizationSettings,
+    one_at_a_time,
+)
 from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     MotionSolution,
@@ -140,7 +145,8 @@ def _optimise(
     settings = _enough_waypoints(settings, start, goal)
     clock = time.process_time()
     try:
-        result = optimize_trajectory(start, goal, case.space, signed_distance, settings, initial_path=guide)
+        clearance: Clearance = one_at_a_time(signed_distance)
+        result = optimize_trajectory(start, goal, case.space, clearance, settings, initial_path=guide)
     except InvalidMotionQueryError as error:
         return Outcome(False, False, time.process_time() - clock + extra_cpu_s, math.nan, str(error))
     cpu_s = time.process_time() - clock + extra_cpu_s
