@@ -78,3 +78,19 @@ def test_a_value_above_the_margin_keeps_every_pair_apart(scenes: dict[str, Spher
     assert np.any(values >= MARGIN) and np.any(values < MARGIN)
     # and a pair closer than its floor always shows (one pair at x = -1 is the whole budget)
     assert np.all(values[closest < MARGIN] < MARGIN)
+
+
+def test_the_ends_of_a_move_stay_half_a_width_above_their_floors(scenes: dict[str, SphereScene]) -> None:
+    model = scenes["holding"]
+    plain = SphereClearance(model, MARGIN, WIDTH)
+    qs = np.random.default_rng(5).uniform(model.arm_lower, model.arm_upper, size=(2000, 7))
+    closest = pair_distances(model, plain.pairs, qs).min(axis=1)
+    ends = qs[(closest < MARGIN) & (closest > 0.0)][:2]
+    assert len(ends) == 2
+    clearance = SphereClearance(scenes["holding"], MARGIN, WIDTH, ends=ends)
+    distances = pair_distances(clearance.model, clearance.pairs, ends)
+    assert np.all(distances - clearance.floors >= WIDTH / 2 - 1e-12)
+    lowered = clearance.floors < MARGIN
+    assert lowered.any() and np.all(clearance.floors[~lowered] == MARGIN)
+    # only pairs near contact at an end are lowered
+    assert np.all(distances.min(axis=0)[lowered] < MARGIN + WIDTH / 2)

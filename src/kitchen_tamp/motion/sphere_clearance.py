@@ -11,6 +11,13 @@ which keeps the optimiser a little further from surfaces that many spheres face.
 
 Conservative like the model: the spheres cover the links, so a configuration whose value is at
 least ``margin`` keeps every checked pair of the exact geometry at least ``margin`` apart.
+
+A move's fixed ends may be closer than the margin in the sphere model (the spheres overshoot the
+links by up to about a centimetre, most between links 5 and 7, and a grasp or a drawer handle
+puts the hand near contact), which would make the waypoints next to them infeasible. Given the
+ends, a pair closer than ``margin + width / 2`` at either end gets its floor lowered to half a
+width below its distance there, so each end itself stays clear; the exact re-check of the path
+decides whether that was right.
 """
 
 from __future__ import annotations
@@ -21,7 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.clearance_kernel import HINGE_AT_FLOOR, clearance_penalties
-from kitchen_tamp.motion.sphere_distances import SpherePairs
+from kitchen_tamp.motion.sphere_distances import SpherePairs, pair_distances
 from kitchen_tamp.motion.sphere_scene import SphereScene
 
 FloatArray = npt.NDArray[np.float64]
@@ -40,7 +47,13 @@ def _offsets(sizes: list[int]) -> npt.NDArray[np.int64]:
 class SphereClearance:
     """Smooth clearance (m) of a sphere scene, batched, with analytic gradients."""
 
-    def __init__(self, model: SphereScene, margin: float, width: float = DEFAULT_INFLUENCE_WIDTH) -> None:
+    def __init__(
+        self,
+        model: SphereScene,
+        margin: float,
+        width: float = DEFAULT_INFLUENCE_WIDTH,
+        ends: FloatArray | None = None,
+    ) -> None:
         if width <= 0.0:
             raise ValueError(f"influence width must be positive, got {width}")
         self.model = model
@@ -49,6 +62,9 @@ class SphereClearance:
         self.pairs = SpherePairs.of(model)
         self.floors: FloatArray = np.full(len(self.pairs), self.margin)
         """Per pair of `SpherePairs` (its order), the distance (m) the pair must keep."""
+        if ends is not None and len(self.pairs):
+            at_ends = pair_distances(model, self.pairs, np.atleast_2d(np.asarray(ends, dtype=float)))
+            self.floors = np.minimum(self.floors, at_ends.min(axis=0) - width / 2.0)
         self.evaluations = 0
         """Configurations evaluated so far."""
         self._arguments = self._kernel_arrays()

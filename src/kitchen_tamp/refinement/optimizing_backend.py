@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 import numpy as np
+import numpy.typing as npt
 
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import ConfigurationSpace, InvalidMotionQueryError, check_path_densely, path_length
@@ -103,7 +104,7 @@ class OptimizingMotionBackend:
         attempts: list[dict[str, Figure]] = []
         optimisation_s = 0.0
         clearances = {"drake": one_at_a_time(signed_distance)}
-        spheres = _sphere_clearance(checker, self.settings.collision_margin)
+        spheres = _sphere_clearance(checker, self.settings.collision_margin, np.stack([start, goal]))
         if spheres is not None:
             clearances["spheres"] = spheres
         for number, (initial, guide, settings, model) in enumerate(
@@ -219,13 +220,15 @@ class OptimizingMotionBackend:
         }
 
 
-def _sphere_clearance(checker: BoundedCollisionChecker, margin: float) -> Clearance | None:
+def _sphere_clearance(
+    checker: BoundedCollisionChecker, margin: float, ends: npt.NDArray[np.float64]
+) -> Clearance | None:
     """The smooth clearance of the checker's sphere model (a `SphereScreenedChecker`'s
-    ``spheres``), or None when it plans without one."""
+    ``spheres``) for a move between ``ends``, or None when it plans without one."""
     model = getattr(getattr(checker, "spheres", None), "model", None)
     if model is None:
         return None
     # imported here: numba loads only when the sphere model is used
     from kitchen_tamp.motion.sphere_clearance import SphereClearance
 
-    return SphereClearance(model, margin)
+    return SphereClearance(model, margin, ends=ends)
