@@ -65,6 +65,9 @@ def test_a_free_straight_line_is_the_initial_guess_and_the_answer() -> None:
     assert isinstance(attempts, list) and attempts[0]["initial_guess"] == "straight line"
     expected = np.linspace(start, goal, DEFAULT_SETTINGS.num_waypoints)
     np.testing.assert_allclose(solution.path, expected, atol=1e-6)
+    # nothing to warm-start from is needed: no RRT-Connect reference was planned
+    assert solution.figures["rrt_connect_planned"] is False
+    assert solution.figures["length_ratio_to_rrt_connect"] is None
 
 
 def test_same_rng_gives_the_same_trajectory() -> None:

@@ -64,6 +64,10 @@ problem_hard.pddl (seed 0), 0.11-0.15 CPU s per move instead of 0.3-3.3 s with 5
 and 1e-3, with paths 0.1-0.9% longer. At most 200 major iterations."""
 
 
+Attempt = tuple[bool, TrajectoryOptimizationSettings, str]
+"""One attempt of a move: (starts from the reference path, settings, clearance model)."""
+
+
 class SignedDistanceModel(BoundedCollisionChecker, Protocol):
     """A planning checker that also gives the minimum signed distance and its gradient."""
 
@@ -99,7 +103,14 @@ class OptimizingMotionBackend:
         if signed_distance is None:
             raise ValueError("trajectory optimisation needs a collision model with signed distances (drake)")
         clock = time.perf_counter()
-        reference = self.reference.solve(start, goal, checker, strict_checker, rng)
+        reference: MotionSolution | None = None
+
+        def planned_reference() -> MotionSolution:
+            nonlocal reference
+            if reference is None:
+                reference = self.reference.solve(start, goal, checker, strict_checker, rng)
+            return reference
+
         space = ConfigurationSpace(checker.lower, checker.upper)
         attempts: list[dict[str, Figure]] = []
         optimisation_s = 0.0
@@ -107,12 +118,20 @@ class OptimizingMotionBackend:
         spheres = _sphere_clearance(checker, self.settings.collision_margin, np.stack([start, goal]))
         if spheres is not None:
             clearances["spheres"] = spheres
-        for number, (initial, guide, settings, model) in enumerate(
-            self._plans(start, goal, checker, reference, spheres=spheres is not None), start=1
-        ):
+        straight_free = bool(checker.segment_valid(start, goal))
+        for from_reference, settings, model in self._plans(straight_free, spheres is not None):
+            if from_reference and planned_reference().path is None and attempts:
+                continue  # no path to warm-start from, and the straight line was tried
+            initial, guide = "straight line", None
+            if from_reference and (path := planned_reference().path) is not None:
+                seed = planned_reference().figures.get("planner_seed")
+                initial, guide = f"rrt_connect seed {seed}", path
+            if settings.num_waypoints != self.settings.num_waypoints:
+                initial += f", {settings.num_waypoints} waypoints"
             clearance = clearances[model]
             attempt, waypoints, seconds = self._attempt(start, goal, space, clearance, settings, guide)
             optimisation_s += seconds
+            number = len(attempts) + 1
             attempt = {"attempt": number, "initial_guess": initial, "clearance": model, **attempt}
             if waypoints is not None:
                 dense = check_path_densely(waypoints, strict_checker, self.dense_resolution)
@@ -120,53 +139,54 @@ class OptimizingMotionBackend:
             attempts.append(attempt)
             if waypoints is not None and attempt["dense_check"] == "free":
                 figures = self._figures(waypoints, reference, attempts, settings)
-                timings = {"optimization_s": optimisation_s, "reference_rrt_s": reference.seconds}
                 return MotionSolution(
-                    waypoints, "solved", number, figures, time.perf_counter() - clock, timings
+                    waypoints,
+                    "solved",
+                    number,
+                    figures,
+                    time.perf_counter() - clock,
+                    self._timings(optimisation_s, reference),
                 )
         figures = self._figures(None, reference, attempts, self.settings)
         status = str(attempts[-1].get("status", "not attempted")) if attempts else "not attempted"
-        timings = {"optimization_s": optimisation_s, "reference_rrt_s": reference.seconds}
-        return MotionSolution(None, status, len(attempts), figures, time.perf_counter() - clock, timings)
+        return MotionSolution(
+            None,
+            status,
+            len(attempts),
+            figures,
+            time.perf_counter() - clock,
+            self._timings(optimisation_s, reference),
+        )
 
-    def _plans(
-        self,
-        start: JointConfiguration,
-        goal: JointConfiguration,
-        checker: BoundedCollisionChecker,
-        reference: MotionSolution,
-        spheres: bool,
-    ) -> list[tuple[str, JointPath | None, TrajectoryOptimizationSettings, str]]:
-        """The attempts in order: (initial guess, its path or None for the straight line,
-        settings, clearance model). The straight line starts when the planning checker finds it
-        free, else the reference path: optimising through an obstacle is where SNOPT spent tens
-        of thousands of distance queries. With a sphere model: its clearance, then its clearance
-        with twice the waypoints from the reference path (a path that grazed between waypoints),
-        then Drake's exact signed distance (where the spheres' overshoot closes a passage).
-        Without: Drake's, then twice the waypoints."""
-        seed = reference.figures.get("planner_seed")
-        path = reference.path
-        if path is None or checker.segment_valid(start, goal):
-            initial, guide = "straight line", None
-        else:
-            initial, guide = f"rrt_connect seed {seed}", path
+    def _plans(self, straight_free: bool, spheres: bool) -> list[Attempt]:
+        """The attempts in order: (whether it starts from the reference path, settings, clearance
+        model). The first starts from the straight line when the planning checker finds it free,
+        else from the reference path: optimising through an obstacle is where SNOPT spent tens of
+        thousands of distance queries, and a free straight line needs no reference at all. With a
+        sphere model: its clearance, then its clearance with twice the waypoints from the
+        reference path (for a path that grazed between waypoints), then Drake's exact signed
+        distance (where the spheres' overshoot closes a passage). Without: Drake's, then twice the
+        waypoints."""
         denser = replace(
             self.settings,
             num_waypoints=2 * self.settings.num_waypoints,
             samples_between_waypoints=self.settings.samples_between_waypoints + 1,
         )
-        described = f"rrt_connect seed {seed}, {denser.num_waypoints} waypoints"
-        plans: list[tuple[str, JointPath | None, TrajectoryOptimizationSettings, str]] = []
+        first = not straight_free
         if spheres:
-            plans.append((initial, guide, self.settings, "spheres"))
-            if path is not None:
-                plans.append((described, path, denser, "spheres"))
-            plans.append((initial, guide, self.settings, "drake"))
-        else:
-            plans.append((initial, guide, self.settings, "drake"))
-            if path is not None:
-                plans.append((described, path, denser, "drake"))
-        return plans
+            return [
+                (first, self.settings, "spheres"),
+                (True, denser, "spheres"),
+                (first, self.settings, "drake"),
+            ]
+        return [(first, self.settings, "drake"), (True, denser, "drake")]
+
+    @staticmethod
+    def _timings(optimisation_s: float, reference: MotionSolution | None) -> dict[str, float]:
+        return {
+            "optimization_s": optimisation_s,
+            "reference_rrt_s": 0.0 if reference is None else reference.seconds,
+        }
 
     def _attempt(
         self,
@@ -197,11 +217,14 @@ class OptimizingMotionBackend:
     def _figures(
         self,
         path: JointPath | None,
-        reference: MotionSolution,
+        reference: MotionSolution | None,
         attempts: list[dict[str, Figure]],
         settings: TrajectoryOptimizationSettings,
     ) -> dict[str, Figure]:
-        rrt_length = reference.figures.get("path_length_rad") if reference.path is not None else None
+        """The move's report figures; the RRT-Connect comparison only when the reference was planned
+        (not when the free straight line was the answer)."""
+        planned = reference is not None and reference.path is not None
+        rrt_length = reference.figures.get("path_length_rad") if planned and reference else None
         length = round(path_length(path), 9) if path is not None else None
         ratio = (
             round(length / float(rrt_length), 6)
@@ -214,11 +237,11 @@ class OptimizingMotionBackend:
             "attempts": attempts,  # type: ignore[dict-item]
             "waypoints": None if path is None else len(path),
             "path_length_rad": length,
+            "rrt_connect_planned": reference is not None,
             "rrt_connect_path_length_rad": rrt_length,
             "length_ratio_to_rrt_connect": ratio,
-            "rrt_connect_seed": reference.figures.get("planner_seed"),
+            "rrt_connect_seed": None if reference is None else reference.figures.get("planner_seed"),
         }
-
 
 def _sphere_clearance(
     checker: BoundedCollisionChecker, margin: float, ends: npt.NDArray[np.float64]
