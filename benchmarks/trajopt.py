@@ -1,25 +1,30 @@
-"""Trajectory optimisation on the kitchen's free-space motions: which formulation is collision-free?
+"""Trajectory optimisation on the kitchen's free-space motions: which formulation is collision-free,
+and how fast with Drake's distances against the sphere model's clearance?
 
 Every query of the ``kitchen`` set of ``benchmarks/motion.py`` (the moves of the
-kitchen task's BFS plans) is solved by six variants. Optimisation sees Drake's
-model of the query's scene (minimum signed distance and gradient, 5 mm margin
-as in ``DEFAULT_SETTINGS``); sampling plans with the same Drake model keeping
-the pipeline's 3 mm planning margin (none when an end is closer), exactly as
-``refine_action`` sets it up. Whatever a variant returns is verified the same
+kitchen task's BFS plans) is solved by seven variants. Variants 1-5 optimise
+against Drake's model of the query's scene (minimum signed distance and gradient,
+5 mm margin as in ``DEFAULT_SETTINGS``); sampling plans with the same Drake model
+keeping the pipeline's 3 mm planning margin (none when an end is closer), exactly
+as ``refine_action`` sets it up. Whatever a variant returns is verified the same
 way: start and goal held, and the query's own PyBullet checker finds no
 collision at every 0.005 rad along the path (``check_path_densely``).
 
 1. ``original``: the class project's program, N=50 waypoints, no collision
    constraints, from the straight line;
-2. ``straight``: ours (N=50, signed distance >= 5 mm at and midway between
-   waypoints) from the straight line, one attempt;
+2. ``straight``: ours (``DEFAULT_SETTINGS``) from the straight line, one attempt;
 3. ``rrt warm``: ours warm-started from variant 6's path only (its CPU time
    includes planning that path);
-4. ``full``: ``OptimizingMotionBackend().solve`` (straight line, then the RRT
-   warm start, then twice the waypoints), which plans its own reference path;
+4. ``full, Drake``: ``OptimizingMotionBackend().solve`` planning with Drake's
+   model alone (``--collision-model drake``): Drake's distances, from the
+   straight line when it is free, else from its own RRT-Connect path;
 5. ``sparse``: ours with N=25 and no samples between waypoints, from the
    straight line;
-6. ``rrt``: ``SamplingMotionBackend`` (RRT-Connect + shortcut), the yardstick.
+6. ``rrt``: ``SamplingMotionBackend`` (RRT-Connect + shortcut), the yardstick;
+7. ``full, spheres``: the back end as the pipeline runs it by default, planning
+   with the sphere model in front of Drake's: the sphere model's smooth
+   clearance first, Drake's distances only as the last attempt. Variants 4 and 7
+   side by side are what the sphere model buys.
 
 N is raised to what ``max_step`` needs for long moves, as the back end does.
 "solver success" is what the solver (or back end) reports, "verified" what the
@@ -31,9 +36,6 @@ only. Deterministic for a seed.
     .venv/bin/python benchmarks/trajopt.py                        # 16 queries x seeds 0 and 1
     .venv/bin/python benchmarks/trajopt.py --queries 24 --per-query
     .venv/bin/python benchmarks/trajopt.py --queries 8 --seeds 3
-
-The default takes about 5 CPU minutes (7 wall minutes on a busy 2-core machine);
-``--queries 24`` about 7 CPU minutes. Most of it is variants 2-4 on a few hard moves.
 """
 
 from __future__ import annotations
@@ -59,6 +61,8 @@ from kitchen_tamp.motion import (
     path_length,
 )
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.motion.trajectory_program import (
     Clearance,
     SignedDistanceFunction,
@@ -99,6 +103,8 @@ class Case:
     query: MotionQuery
     strict: PyBulletCollisionChecker
     planning: DrakeCollisionChecker
+    spheres: SphereScreenedChecker
+    """The pipeline's default planning model: the sphere model in front of ``planning``."""
     space: ConfigurationSpace
     seed: tuple[int, int]
     hard: bool
@@ -174,9 +180,17 @@ def run_rrt_warm_start(case: Case) -> Outcome:
 
 
 def run_full(case: Case) -> Outcome:
+    return _run_backend(case, case.planning)
+
+
+def run_full_spheres(case: Case) -> Outcome:
+    return _run_backend(case, case.spheres)
+
+
+def _run_backend(case: Case, planning: DrakeCollisionChecker | SphereScreenedChecker) -> Outcome:
     clock = time.process_time()
     solution = OptimizingMotionBackend().solve(
-        case.query.start, case.query.goal, case.planning, case.strict, np.random.default_rng(case.seed)
+        case.query.start, case.query.goal, planning, case.strict, np.random.default_rng(case.seed)
     )
     cpu_s = time.process_time() - clock
     attempts = solution.figures.get("attempts")
@@ -204,9 +218,10 @@ VARIANTS: dict[str, Callable[[Case], Outcome]] = {
     "1 original (N=50, no collision constraint)": run_original,
     "2 ours, straight line only": run_straight,
     "3 ours, RRT-Connect warm start only": run_rrt_warm_start,
-    "4 full back end": run_full,
+    "4 full back end, Drake distances": run_full,
     "5 sparse (N=25, no samples between)": run_sparse,
     "6 RRT-Connect + shortcut": run_rrt,
+    "7 full back end, sphere clearance (the pipeline's)": run_full_spheres,
 }
 YARDSTICK = "6 RRT-Connect + shortcut"
 
@@ -217,12 +232,16 @@ def prepare(query: MotionQuery, seed: tuple[int, int]) -> Case:
         raise TypeError(f"{query.name}: expected a PyBullet checker, got {type(query.checker).__name__}")
     strict = query.checker
     description = describe_collision_checker(strict)
-    planning = DrakeCollisionChecker(description, margin=PLANNING_MARGIN)
+    margin = PLANNING_MARGIN
+    planning = DrakeCollisionChecker(description, margin=margin)
     if not planning.is_valid(np.stack([query.start, query.goal])).all():
-        planning = DrakeCollisionChecker(description, margin=0.0)  # an end is closer: no slack
+        margin = 0.0  # an end is closer: no slack
+        planning = DrakeCollisionChecker(description, margin=margin)
+    spheres = SphereScreenedChecker(SphereCollisionChecker(description, margin=margin), planning)
     straight = np.stack([query.start, query.goal])
     hard = not check_path_densely(straight, strict, JUDGE_RESOLUTION_RAD).collision_free
-    case = Case(query, strict, planning, ConfigurationSpace(planning.lower, planning.upper), seed, hard)
+    space = ConfigurationSpace(planning.lower, planning.upper)
+    case = Case(query, strict, planning, spheres, space, seed, hard)
     clock = time.process_time()
     reference = SamplingMotionBackend().solve(
         query.start, query.goal, planning, strict, np.random.default_rng(seed)
