@@ -80,17 +80,20 @@ def test_a_value_above_the_margin_keeps_every_pair_apart(scenes: dict[str, Spher
     assert np.all(values[closest < MARGIN] < MARGIN)
 
 
-def test_the_ends_of_a_move_stay_half_a_width_above_their_floors(scenes: dict[str, SphereScene]) -> None:
+def test_the_ends_of_a_move_have_the_full_clearance(scenes: dict[str, SphereScene]) -> None:
     model = scenes["holding"]
     plain = SphereClearance(model, MARGIN, WIDTH)
     qs = np.random.default_rng(5).uniform(model.arm_lower, model.arm_upper, size=(2000, 7))
     closest = pair_distances(model, plain.pairs, qs).min(axis=1)
     ends = qs[(closest < MARGIN) & (closest > 0.0)][:2]
-    assert len(ends) == 2
-    clearance = SphereClearance(scenes["holding"], MARGIN, WIDTH, ends=ends)
+    assert len(ends) == 2 and np.all(plain(ends)[0] < MARGIN)
+    clearance = SphereClearance(model, MARGIN, WIDTH, ends=ends)
+    values, gradients = clearance(ends)
+    np.testing.assert_allclose(values, MARGIN + WIDTH)
+    assert np.all(gradients == 0.0)
     distances = pair_distances(clearance.model, clearance.pairs, ends)
-    assert np.all(distances - clearance.floors >= WIDTH / 2 - 1e-12)
     lowered = clearance.floors < MARGIN
     assert lowered.any() and np.all(clearance.floors[~lowered] == MARGIN)
-    # only pairs near contact at an end are lowered
-    assert np.all(distances.min(axis=0)[lowered] < MARGIN + WIDTH / 2)
+    # only pairs within the width of the margin at an end are lowered, by a width below their distance
+    assert np.all(distances.min(axis=0)[lowered] < MARGIN + WIDTH)
+    np.testing.assert_allclose(clearance.floors[lowered], distances.min(axis=0)[lowered] - WIDTH)

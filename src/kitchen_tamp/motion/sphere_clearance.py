@@ -15,9 +15,10 @@ least ``margin`` keeps every checked pair of the exact geometry at least ``margi
 A move's fixed ends may be closer than the margin in the sphere model (the spheres overshoot the
 links by up to about a centimetre, most between links 5 and 7, and a grasp or a drawer handle
 puts the hand near contact), which would make the waypoints next to them infeasible. Given the
-ends, a pair closer than ``margin + width / 2`` at either end gets its floor lowered to half a
-width below its distance there, so each end itself stays clear; the exact re-check of the path
-decides whether that was right.
+ends, a pair within the influence width of its floor at either end gets its floor lowered to a
+width below its distance there: no pair adds to the penalty at the ends, which therefore have the
+full clearance ``margin + width``, and the waypoints next to them are feasible. The exact
+re-check of the path decides whether that was right.
 """
 
 from __future__ import annotations
@@ -64,7 +65,7 @@ class SphereClearance:
         """Per pair of `SpherePairs` (its order), the distance (m) the pair must keep."""
         if ends is not None and len(self.pairs):
             at_ends = pair_distances(model, self.pairs, np.atleast_2d(np.asarray(ends, dtype=float)))
-            self.floors = np.minimum(self.floors, at_ends.min(axis=0) - width / 2.0)
+            self.floors = np.minimum(self.floors, at_ends.min(axis=0) - width)
         self.evaluations = 0
         """Configurations evaluated so far."""
         self._arguments = self._kernel_arrays()
