@@ -82,6 +82,33 @@ def test_replay_of_a_tampered_trajectory_fails(hard_run: Path, tmp_path: Path) -
     assert False in goals.values()
 
 
+def _with_scene(hard_run: Path, folder: Path, scene: Path) -> Path:
+    data = json.loads((hard_run / "trajectory.json").read_text())
+    data["scene"] = str(scene)
+    (folder / "trajectory.json").write_text(json.dumps(data))
+    return folder
+
+
+def test_replay_judges_in_the_kitchen_the_run_recorded(
+    hard_run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from kitchen_tamp.kitchens import default_scene_path
+
+    recorded = json.loads((hard_run / "trajectory.json").read_text())["scene"]
+    assert Path(recorded).resolve() == default_scene_path().resolve()
+    galley = REPO / "src" / "kitchen_tamp" / "kitchens" / "galley" / "scene.toml"
+    capsys.readouterr()
+    # the galley has no `drawer`: judged there, the problem itself is refused
+    assert main(["replay", str(_with_scene(hard_run, tmp_path, galley)), "--no-video"]) == 2
+    assert str(galley) in capsys.readouterr().err
+    # --scene overrides what the file recorded
+    assert main(["replay", str(tmp_path), "--no-video", "--scene", recorded]) == 0
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    assert main(["replay", str(_with_scene(hard_run, gone, gone / "scene.toml")), "--no-video"]) == 2
+    assert "the scene file this run planned in is gone" in capsys.readouterr().err
+
+
 def test_same_seed_gives_the_same_report_apart_from_timing(tmp_path: Path) -> None:
     a, b = tmp_path / "a", tmp_path / "b"
     for out in (a, b):

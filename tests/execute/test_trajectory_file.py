@@ -22,6 +22,9 @@ def test_round_trip_is_exact(tmp_path: Path, refined: KitchenTrajectory) -> None
             assert np.array_equal(a.configurations, b.configurations)
             assert np.array_equal(a.gripper_widths, b.gripper_widths)
     assert back.ignored_fields == ()
+    assert back.scene is None  # a file that records no scene (written before scenes were recorded)
+    with_scene = SavedRun(run.problem, run.domain, "rrt", 3, refined, scene=Path("/p/scene.toml"))
+    assert read_trajectory(write_trajectory(tmp_path / "t2.json", with_scene)).scene == Path("/p/scene.toml")
 
 
 @pytest.mark.parametrize(

@@ -87,7 +87,7 @@ def _integer_at_least(minimum: int) -> Callable[[str], int]:
 def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scene", type=Path, metavar="FILE",
                         help="kitchen scene file (default: scene.toml beside the problem, else the "
-                             "default kitchen)")
+                             "default kitchen; replay: the scene the run recorded)")
     parser.add_argument("--out", type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--no-video", action="store_true", help="do not render replay.gif and replay.html")
     parser.add_argument("--meshcat", action="store_true",
@@ -330,7 +330,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         report.plan = refined.trajectory.plan
     report.steps = [r.figures() for r in refined.records]
     _record_step_timing(report, refined.records)
-    run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory)
+    run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory, scene=choice.scene.absolute())
     report.outputs["trajectory"] = write_trajectory(out_dir / TRAJECTORY_FILE, run).name
     return verify_and_render(task, run, out_dir, report, args, kitchen_map, live=live)
 
@@ -353,7 +353,7 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
         _say(f"note: not reading {', '.join(run.ignored_fields)} from the trajectory file: the judge "
              "derives them from the kitchen")
     task = load_task(run.problem, run.domain)
-    kitchen_map = choose_scene(run.problem, args.scene, run.domain).kitchen_map()
+    kitchen_map = choose_scene(run.problem, _replay_scene(args.scene, run), run.domain).kitchen_map()
     report = RunReport(run.problem, run.domain, run.mode, "replay", run.seed, SYMBOLIC_PLANNER)
     report.plan = run.trajectory.plan
     report.started = started
@@ -361,6 +361,17 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
          f"seed {run.seed})")
     report.outputs["trajectory"] = str(args.run_dir / TRAJECTORY_FILE)
     return verify_and_render(task, run, out_dir, report, args, kitchen_map, report_name="replay_report.json")
+
+
+def _replay_scene(given: Path | None, run: SavedRun) -> Path | None:
+    """The kitchen to judge a saved run in: ``--scene`` if given, else the scene file the run
+    recorded (older files record none: the one beside the problem, else the default)."""
+    if given is not None or run.scene is None:
+        return given
+    if not run.scene.is_file():
+        raise TrajectoryFileError(f"{run.scene}: the scene file this run planned in is gone; "
+                                  "pass --scene FILE to judge it in another kitchen")
+    return run.scene
 
 
 def _bad_input_line(error: Exception) -> str | None:

@@ -1,7 +1,9 @@
 """``trajectory.json``: a refined plan as data, enough to replay and verify it without planning.
 
 Only what a planner decides: per action its PDDL text and its segments, each
-with a name (a label for people), joint waypoints and gripper widths. What rides
+with a name (a label for people), joint waypoints and gripper widths; and which
+problem, domain and kitchen scene file the run planned in (paths), so that
+``replay`` judges it in the same kitchen. What rides
 with the hand, where the drawer is and which contacts are intended are not in
 the file: the judge derives them (``kitchen_tamp.kitchen.replay_action``).
 Floats are written with full precision, so a replay sees exactly what was
@@ -49,6 +51,8 @@ class SavedRun:
     trajectory: KitchenTrajectory
     ignored_fields: tuple[str, ...] = ()
     """Fields the file carried that the judge derives instead (sorted; none in the current format)."""
+    scene: Path | None = None
+    """The kitchen scene file the run planned in (``None`` in files written before it was recorded)."""
 
 
 def _segment_data(segment: Segment) -> dict[str, Any]:
@@ -65,6 +69,7 @@ def trajectory_data(run: SavedRun) -> dict[str, Any]:
         "format": TRAJECTORY_FORMAT,
         "problem": str(run.problem),
         "domain": str(run.domain),
+        **({} if run.scene is None else {"scene": str(run.scene)}),
         "mode": run.mode,
         "seed": run.seed,
         "steps": [
@@ -114,6 +119,7 @@ def read_trajectory(path: Path) -> SavedRun:
                     & set(LEGACY_SEGMENT_FIELDS)
                 )
             ),
+            scene=Path(data["scene"]) if data.get("scene") is not None else None,
         )
     except (KeyError, TypeError, ValueError) as error:
         raise TrajectoryFileError(f"{path}: malformed trajectory ({error})") from None
