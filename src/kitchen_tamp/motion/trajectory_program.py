@@ -60,9 +60,6 @@ class TrajectoryOptimizationSettings:
     the straight segment between waypoints is what gets executed and verified."""
     waypoints_per_constraint: int = 10
     """Steps whose collision points one constraint (one batched clearance call) covers."""
-    major_iterations_limit: int | None = None
-    """SNOPT's "Major iterations limit" when set (``max_iterations`` is then its minor
-    "Iterations limit"); None keeps ``max_iterations`` as the major limit."""
 
     def __post_init__(self) -> None:
         if self.num_waypoints < 2:

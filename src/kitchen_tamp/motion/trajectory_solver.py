@@ -52,9 +52,6 @@ def _solver_options(solver: SolverInterface, settings: TrajectoryOptimizationSet
     for name, value in zip(names, values, strict=True):
         if value is not None:
             options.SetOption(solver.solver_id(), name, value)
-    if snopt and settings.major_iterations_limit is not None:
-        options.SetOption(solver.solver_id(), "Major iterations limit", settings.major_iterations_limit)
-        options.SetOption(solver.solver_id(), "Iterations limit", settings.max_iterations)
     return options
 
 
