@@ -214,14 +214,16 @@ def run_rrt(case: Case) -> Outcome:
     return Outcome(True, verified, case.reference_cpu_s, path_length(reference.path))
 
 
+FULL_DRAKE = "4 full back end, Drake distances"
+FULL_SPHERES = "7 full back end, sphere clearance (the pipeline's)"
 VARIANTS: dict[str, Callable[[Case], Outcome]] = {
     "1 original (N=50, no collision constraint)": run_original,
     "2 ours, straight line only": run_straight,
     "3 ours, RRT-Connect warm start only": run_rrt_warm_start,
-    "4 full back end, Drake distances": run_full,
+    FULL_DRAKE: run_full,
     "5 sparse (N=25, no samples between)": run_sparse,
     "6 RRT-Connect + shortcut": run_rrt,
-    "7 full back end, sphere clearance (the pipeline's)": run_full_spheres,
+    FULL_SPHERES: run_full_spheres,
 }
 YARDSTICK = "6 RRT-Connect + shortcut"
 
@@ -356,7 +358,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     hard = sum(case.hard for case in cases)
     print(
         f"{len(cases)} kitchen queries ({args.queries} per seed, seeds {' '.join(map(str, args.seeds))}), "
-        f"{hard} hard; optimisation: {nonlinear_solver().solver_id().name()} on Drake signed distance, "
+        f"{hard} hard; optimisation: {nonlinear_solver().solver_id().name()} "
+        "(variants 1-5 on Drake signed distance), "
         f"margin {DEFAULT_SETTINGS.collision_margin} m; "
         f"verified: PyBullet, every {JUDGE_RESOLUTION_RAD} rad"
     )
@@ -364,10 +367,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(format_table([summarise(v, cases, results) for v in VARIANTS], len(cases), hard))
     print()
     print(format_by_seed(args.seeds, cases, results))
-    full = [run.detail for run in results["4 full back end"] if run.verified]
-    attempts = {detail: full.count(detail) for detail in sorted(set(full))}
     print()
-    print("full back end, verified at: " + ", ".join(f"{d}: {n}" for d, n in attempts.items()))
+    for variant in (FULL_DRAKE, FULL_SPHERES):
+        full = [run.detail for run in results[variant] if run.verified]
+        attempts = {detail: full.count(detail) for detail in sorted(set(full))}
+        print(f"{variant}, verified at: " + ", ".join(f"{d}: {n}" for d, n in attempts.items()))
     if args.per_query:
         print()
         print(format_per_query(cases, results))
