@@ -201,7 +201,7 @@ def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[Moti
             checker = spheres = SphereCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
             if backend == "spheres":
                 drake = DrakeCollisionChecker(description, margin=JUDGE_AGREEMENT_MARGIN)
-                checker = SphereScreenedChecker(spheres, drake)
+                checker = SphereScreenedChecker(spheres, drake, exact_is_bare=True)
         name = f"{problem.stem}-s{'.'.join(map(str, seed))}-{step}{targets.action_text}"
         queries.append(
             MotionQuery(

@@ -10,6 +10,12 @@ timing), as they are for anyone past their first run. Children run without
 run recompile our editable-installed modules while the installed peers load
 theirs from byte code, which no user of an installed package pays).
 
+Each run's CPU time (user + system, of the process and its children) is kept
+beside its wall time: on a loaded machine the wall time of a short process is
+mostly waiting for a core, and the CPU time is the steadier measure of the work.
+The summary gives both, with the machine's load average before and after, and
+the wall time of a bare ``python -c pass`` (the floor every Python planner pays).
+
 Ours is timed twice per round: ``first``, the first run on these files (the
 task cache emptied before each such run, so it parses, grounds and stores the
 task), and ``repeat``, a run on unchanged files (served from the task cache,
@@ -29,6 +35,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -52,6 +59,7 @@ class ProcessRun:
     seconds: float | None  # median wall time of the runs that found a plan
     length: int | None
     note: str = ""
+    cpu_seconds: float | None = None  # median CPU time (user + system) of the same runs
 
 
 OURS = ("first", "ours")
@@ -94,19 +102,29 @@ def _plan_length(planner: str, completed: subprocess.CompletedProcess[str]) -> i
     return int(match.group(1)) if match else None
 
 
+def _children_cpu_seconds() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def _run_once(command: list[str], planner: str, workdir: Path,
-              timeout: float) -> tuple[float | None, int | None]:
+              timeout: float) -> tuple[float | None, float | None, int | None]:
+    """Wall and CPU seconds of one run, and its plan length (seconds None without a plan)."""
     if planner == "first":
         shutil.rmtree(_task_cache(workdir), ignore_errors=True)
+    cpu_start = _children_cpu_seconds()
     start = time.perf_counter()
     try:
         completed = subprocess.run(command, capture_output=True, text=True, cwd=workdir, timeout=timeout,
                                    env=_environment(workdir))
     except subprocess.TimeoutExpired:
-        return None, None
+        return None, None, None
     seconds = time.perf_counter() - start
+    cpu_seconds = _children_cpu_seconds() - cpu_start
     length = _plan_length(planner, completed)
-    return (seconds if length is not None else None), length
+    if length is None:
+        return None, None, None
+    return seconds, cpu_seconds, length
 
 
 def compare_processes(domain: Path, problem: Path, search: str, workdir: Path, fd_script: Path | None,
@@ -115,17 +133,19 @@ def compare_processes(domain: Path, problem: Path, search: str, workdir: Path, f
     planners = [*OURS, "pyperplan"] + (["fd"] if fd_script else [])
     commands = {p: _command(p, search, domain, problem, workdir, fd_script, timeout) for p in planners}
     samples: dict[str, list[float]] = {p: [] for p in planners}
+    cpu_samples: dict[str, list[float]] = {p: [] for p in planners}
     lengths: dict[str, int | None] = dict.fromkeys(planners)
     failed: set[str] = set()
     for round_index in range(rounds):
         for planner in planners:
             if planner in failed:
                 continue
-            seconds, length = _run_once(commands[planner], planner, workdir, timeout + 5)
-            if seconds is None:
+            seconds, cpu_seconds, length = _run_once(commands[planner], planner, workdir, timeout + 5)
+            if seconds is None or cpu_seconds is None:
                 failed.add(planner)
                 continue
             samples[planner].append(seconds)
+            cpu_samples[planner].append(cpu_seconds)
             lengths[planner] = length
         slowest = max((s[0] for s in samples.values() if s), default=0.0)
         if round_index == 0 and slowest > 5.0:
@@ -133,7 +153,8 @@ def compare_processes(domain: Path, problem: Path, search: str, workdir: Path, f
     runs = {}
     for planner in planners:
         if samples[planner]:
-            runs[planner] = ProcessRun(statistics.median(samples[planner]), lengths[planner])
+            runs[planner] = ProcessRun(statistics.median(samples[planner]), lengths[planner],
+                                       cpu_seconds=statistics.median(cpu_samples[planner]))
         else:
             runs[planner] = ProcessRun(None, None, f"{planner}: no plan within {timeout:g} s")
     return runs
@@ -143,20 +164,42 @@ def geometric_mean(values: list[float]) -> float:
     return math.exp(sum(math.log(v) for v in values) / len(values))
 
 
+def bare_python_seconds(workdir: Path, runs: int = 9) -> float:
+    """Median wall time of ``python -c pass``: the start-up every Python planner pays first."""
+    samples = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-c", "pass"], cwd=workdir, env=_environment(workdir), check=True)
+        samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+
+
+def _load() -> str:
+    one, five, fifteen = os.getloadavg()
+    return f"load average {one:.2f} {five:.2f} {fifteen:.2f} on {os.cpu_count()} cores"
+
+
+def _ratio(peer: float | None, ours: float | None) -> float | None:
+    return peer / ours if peer and ours else None
+
+
 def process_table(rows: list[tuple[str, Path, Path, tuple[str, ...]]], workdir: Path, fd_script: Path | None,
                   timeout: float, rounds: int) -> None:
     """Print the whole-process table for (name, domain, problem, searches) rows, and a summary."""
     header = (f"{'problem':22} {'search':6} {'first s':>7} {'ours s':>7} {'pp s':>7} {'pp/1st':>6} "
-              f"{'pp/ours':>7} {'FD s':>7} {'len ours/pp/FD':>15}")
+              f"{'pp/ours':>7} {'cpu pp/1st':>10} {'cpu pp/ours':>11} {'FD s':>7} {'len ours/pp/FD':>15}")
     # One untimed run, so that byte code and our grammar cache are built (as after any first run).
     first_domain, first_problem = rows[0][1], rows[0][2]
     _run_once(_command("ours", "bfs", first_domain, first_problem, workdir, fd_script, timeout), "ours",
               workdir, timeout + 5)
-    print("whole process: median wall time of fresh processes, alternating "
-          f"(up to {rounds} rounds; first = ours on new files, ours = repeated; FD = lama-first for gbfs)")
+    print(f"whole process, before: {_load()}; python -c pass {bare_python_seconds(workdir):.3f} s")
+    print("median wall time of fresh processes, alternating "
+          f"(up to {rounds} rounds; first = ours on new files, ours = repeated; cpu = the same ratios of "
+          "CPU time; FD = lama-first for gbfs)")
     print(header)
     print("-" * len(header))
-    ratios: dict[str, list[tuple[str, float]]] = {"first": [], "ours": []}
+    ratios: dict[tuple[str, str], list[tuple[str, float]]] = {
+        (ours, clock): [] for ours in OURS for clock in ("wall", "cpu")}
     notes: list[str] = []
     for name, domain, problem, searches in rows:
         for search in searches:
@@ -167,11 +210,11 @@ def process_table(rows: list[tuple[str, Path, Path, tuple[str, ...]]], workdir: 
             fd = runs.get("fd")
             shown = {}
             for ours in OURS:
-                seconds = runs[ours].seconds
-                ratio = peer.seconds / seconds if seconds and peer.seconds else None
-                if ratio is not None:
-                    ratios[ours].append((f"{name} {search}", ratio))
-                shown[ours] = f"{ratio:.2f}" if ratio is not None else "-"
+                for clock, ratio in (("wall", _ratio(peer.seconds, runs[ours].seconds)),
+                                     ("cpu", _ratio(peer.cpu_seconds, runs[ours].cpu_seconds))):
+                    if ratio is not None:
+                        ratios[ours, clock].append((f"{name} {search}", ratio))
+                    shown[ours, clock] = f"{ratio:.2f}" if ratio is not None else "-"
             lengths = "/".join("-" if r.length is None else str(r.length)
                                for planner, r in runs.items() if planner != "first")
             row_notes = " ".join(r.note for planner, r in runs.items() if r.note and planner != "first")
@@ -180,17 +223,22 @@ def process_table(rows: list[tuple[str, Path, Path, tuple[str, ...]]], workdir: 
                 if len(optimal) > 1:
                     row_notes += " LENGTHS DIFFER"
             print(f"{name:22} {search:6} {_fmt(runs['first'].seconds):>7} {_fmt(runs['ours'].seconds):>7} "
-                  f"{_fmt(peer.seconds):>7} {shown['first']:>6} {shown['ours']:>7} "
+                  f"{_fmt(peer.seconds):>7} {shown['first', 'wall']:>6} {shown['ours', 'wall']:>7} "
+                  f"{shown['first', 'cpu']:>10} {shown['ours', 'cpu']:>11} "
                   f"{_fmt(fd.seconds if fd else None):>7} {lengths:>15} {row_notes}", flush=True)
             if runs["ours"].seconds is None:
                 notes.append(f"{name} {search}: ours found no plan ({runs['ours'].note})")
+    print(f"\nwhole process, after: {_load()}")
     for ours, label in (("first", "first run on new files"), ("ours", "repeated run")):
-        if ratios[ours]:
-            values = [r for _, r in ratios[ours]]
-            slower = [row for row, r in ratios[ours] if r < 1.0]
-            print(f"\nwhole process, pyperplan / ours ({label}): "
-                  f"geometric mean {geometric_mean(values):.2f}x,"
-                  f" minimum {min(values):.2f}x over {len(values)} rows both solved; "
+        for clock in ("wall", "cpu"):
+            rated = ratios[ours, clock]
+            if not rated:
+                continue
+            values = [r for _, r in rated]
+            worst_row, worst = min(rated, key=lambda item: item[1])
+            slower = [row for row, r in rated if r < 1.0]
+            print(f"pyperplan / ours ({label}, {clock} time): geometric mean {geometric_mean(values):.2f}x, "
+                  f"worst {worst:.2f}x ({worst_row}) over {len(values)} rows both solved; "
                   f"slower on: {', '.join(slower) if slower else 'none'}")
     for note in notes:
         print(note)

@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -185,3 +186,26 @@ def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
     assert run.returncode == 130, run.stderr
     assert run.stderr.strip().splitlines() == ["interrupted"]
     assert "BFS plan" not in run.stdout
+
+
+def test_a_repeated_run_imports_only_what_it_needs(tmp_path: Path) -> None:
+    # What a run served from the task cache must not load: each of these costs milliseconds of every
+    # start (argparse with re and gettext, pathlib with urllib, importlib.resources with zipfile and
+    # tempfile, traceback with linecache and tokenize, typing), and the parser is not needed at all.
+    probe = (
+        "import sys\n"
+        "at_start = set(sys.modules)\n"
+        "from kitchen_tamp.cli.activity_planning import main\n"
+        "code = main(['problem_hard.pddl', '--planner', 'bfs', '--timeout', '60'])\n"
+        "avoidable = {'argparse', 'pathlib', 'importlib.resources', 'traceback', 'typing', 'tempfile',\n"
+        "             'shutil', 'json', 'lark', 'pddl'}\n"
+        "print('avoidable modules:', sorted((set(sys.modules) - at_start) & avoidable))\n"
+        "sys.exit(code)\n")
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    runs = [subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, capture_output=True, text=True,
+                           env=env) for _ in range(2)]
+    for run in runs:
+        assert run.returncode == 0, run.stderr
+        assert "7. placeOn spam stove" in run.stdout
+    assert "'lark'" in runs[0].stdout  # the first run parsed the files
+    assert "avoidable modules: []" in runs[1].stdout, runs[1].stdout

@@ -28,12 +28,12 @@ def _raising(error: BaseException) -> int:
     ],
 )
 def test_each_ending_has_its_code_and_line(
-    capsys: pytest.CaptureFixture[str], error: BaseException, code: ExitCode, last_line: str
+    capsys: pytest.CaptureFixture[str], error: BaseException, code: int, last_line: str
 ) -> None:
     assert exit_code_of(lambda: _raising(error), _line_for_mistakes) == code
     err = capsys.readouterr().err
     assert err.strip().splitlines()[-1] == last_line
-    assert ("Traceback" in err) == (code is ExitCode.INTERNAL_ERROR)  # only a bug shows its traceback
+    assert ("Traceback" in err) == (code == ExitCode.INTERNAL_ERROR)  # only a bug shows its traceback
 
 
 def test_a_normal_end_keeps_the_body_s_code(capsys: pytest.CaptureFixture[str]) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import pwd
 from collections.abc import Iterator
 from functools import cache
 from pathlib import Path
@@ -118,11 +119,14 @@ def test_a_read_only_cache_directory_still_parses(builds: list[str]) -> None:
 def test_without_a_home_directory_the_parser_is_built(
         builds: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("XDG_CACHE_HOME")
+    monkeypatch.delenv("HOME", raising=False)
 
-    def no_home() -> Path:
-        raise RuntimeError("Could not determine home directory.")
+    def no_password_entry(uid: int) -> pwd.struct_passwd:
+        raise KeyError(f"getpwuid(): uid not found: {uid}")
 
-    monkeypatch.setattr(Path, "home", no_home)
+    monkeypatch.setattr(pwd, "getpwuid", no_password_entry)  # where os.path.expanduser looks next
+    with pytest.raises(RuntimeError):
+        Path.home()
     assert parses_the_kitchen()
     assert builds == ["domain", "problem"]
 

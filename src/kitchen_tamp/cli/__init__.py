@@ -1,13 +1,20 @@
 """Argument parsing and exit codes for the entry scripts (see DESIGN.md)."""
 
+from __future__ import annotations
+
 import sys
-import traceback
-from collections.abc import Callable
-from enum import IntEnum
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 
-class ExitCode(IntEnum):
-    """Exit codes shared by both command-line programs."""
+class ExitCode:
+    """Exit codes shared by both command-line programs.
+
+    Plain ints, not an ``IntEnum``: ``enum`` (with ``functools`` and ``collections``)
+    would be a few milliseconds of every activity planner start.
+    """
 
     SOLVED = 0
     NO_PLAN = 1  # no plan exists, or refinement/search failed within its budget
@@ -33,6 +40,8 @@ def exit_code_of(body: Callable[[], int], bad_input_line: Callable[[Exception], 
         if line is not None:
             print(f"error: {line}", file=sys.stderr)
             return int(ExitCode.BAD_INPUT)
+        import traceback  # only for a bug: traceback loads linecache and tokenize, ms of every start
+
         traceback.print_exc()
         print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)
         return int(ExitCode.INTERNAL_ERROR)

@@ -2,75 +2,26 @@
 
 from __future__ import annotations
 
-import argparse
-import os
 import sys
 import time
-from collections.abc import Sequence
-from pathlib import Path
 
 from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
+from kitchen_tamp.cli.planner_arguments import PlannerArguments, read_planner_arguments
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.search.registry import SEARCH_DESCRIPTIONS, SEARCHES, plan
-from kitchen_tamp.planning.search.result import SearchResult
-from kitchen_tamp.planning.task import Task
 from kitchen_tamp.planning.task_cache import load_task_cached
 from kitchen_tamp.planning.validation import plan_text, validate_plan
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
+    from collections.abc import Sequence
     from typing import Any
 
+    from kitchen_tamp.planning.search.result import SearchResult
+    from kitchen_tamp.planning.task import Task
+
 DEFAULT_PLANNERS = ("bfs", "ehc")
-
-
-class _HelpFormatter(argparse.HelpFormatter):
-    """argparse's help formatter, sized as ``shutil.get_terminal_size`` would, without importing ``shutil``.
-
-    argparse builds a formatter at every ``add_argument``; the default one
-    imports ``shutil`` (and with it bz2, lzma and zlib) for the width, a few
-    milliseconds of every planner start. The rule is the same: ``$COLUMNS``,
-    else the terminal's width, else 80; minus 2.
-    """
-
-    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
-                 width: int | None = None) -> None:
-        super().__init__(prog, indent_increment, max_help_position,
-                         width if width is not None else _terminal_columns() - 2)
-
-
-def _terminal_columns() -> int:
-    try:
-        columns = int(os.environ.get("COLUMNS", "0"))
-    except ValueError:
-        columns = 0
-    if columns <= 0:
-        try:
-            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns  # type: ignore[union-attr]
-        except (AttributeError, ValueError, OSError):
-            columns = 0
-    return columns if columns > 0 else 80
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="activity_planning.py", formatter_class=_HelpFormatter,
-        description="Plan a PDDL problem with breadth-first search, enforced hill climbing "
-                    "(h_FF), greedy best-first search (h_FF) or A* (h_max), and print the plans.")
-    parser.add_argument("problem", nargs="?",
-                        help="problem file; a bare name is looked up in the working directory, then in "
-                             "the shipped kitchens (default: the kitchen problem.pddl)")
-    parser.add_argument("--domain", help="domain file (default: domain.pddl beside the problem, else the "
-                                         "shipped kitchen domain)")
-    parser.add_argument("--planner", choices=[*SEARCHES, "all"], action="append",
-                        help="search to run; repeat for several (default: bfs and ehc)")
-    parser.add_argument("--plan-out", type=Path, metavar="FILE",
-                        help="write the last requested planner's plan in IPC form")
-    parser.add_argument("--json", action="store_true", help="print one JSON document")
-    parser.add_argument("--timeout", type=float, metavar="S",
-                        help="time budget in seconds for each planner")
-    return parser
 
 
 def _planners(requested: Sequence[str] | None) -> list[str]:
@@ -115,14 +66,18 @@ def _print_result(result: SearchResult) -> None:
     print("--------------")
 
 
-def run(args: argparse.Namespace) -> int:
+def run(args: PlannerArguments) -> int:
+    plan_out = None
     if args.plan_out is not None:
-        check_output_file(args.plan_out, "--plan-out")
-    started = time.perf_counter()
-    from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_for, find_problem  # on use: start-up cost
+        from pathlib import Path  # on use: the start-up of a run without --plan-out works on strings
 
-    problem = find_problem(args.problem or DEFAULT_PROBLEM)
-    task = load_task_cached(problem, args.domain if args.domain else domain_for(problem))
+        plan_out = Path(args.plan_out)
+        check_output_file(plan_out, "--plan-out")
+    started = time.perf_counter()
+    from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_file_for, find_problem_file  # start-up cost
+
+    problem = find_problem_file(args.problem or DEFAULT_PROBLEM)
+    task = load_task_cached(problem, args.domain if args.domain else domain_file_for(problem))
     ground_seconds = time.perf_counter() - started
     if args.timeout is not None and args.timeout <= 0:
         raise PlanningInputError("--timeout must be a positive number of seconds")
@@ -142,10 +97,10 @@ def run(args: argparse.Namespace) -> int:
         if not args.json:
             _print_result(result)
     last = results[-1]
-    if args.plan_out is not None and last.plan is not None:
+    if plan_out is not None and last.plan is not None:
         from kitchen_tamp.atomic_files import write_atomically  # tempfile: imported only when writing
 
-        write_atomically(args.plan_out, plan_text(last.plan))
+        write_atomically(plan_out, plan_text(last.plan))
     if args.json:
         import json  # only for --json
 
@@ -161,13 +116,13 @@ def run(args: argparse.Namespace) -> int:
     failed = [r for r in results if not r.solved]
     for result in failed:
         print(f"{result.planner}: {result.message}", file=sys.stderr)
-    if args.plan_out is not None and last.plan is None:
-        print(f"{args.plan_out}: not written, {last.planner} found no plan", file=sys.stderr)
+    if plan_out is not None and last.plan is None:
+        print(f"{plan_out}: not written, {last.planner} found no plan", file=sys.stderr)
     return int(ExitCode.NO_PLAN if failed else ExitCode.SOLVED)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    args = read_planner_arguments(sys.argv[1:] if argv is None else argv)
     return exit_code_of(
         lambda: run(args),
         lambda error: str(error) if isinstance(error, (PlanningInputError, OutputPathError)) else None,

@@ -3,12 +3,16 @@
 A straight joint-space segment is checked at the states ``kitchen_tamp.joint_spacing``
 defines (the rule every checker and the judge share), endpoints first, then
 interior points from coarse to fine in growing batches, stopping at the first
-collision.
+collision. A checker that can stop inside a batch at its first colliding
+configuration (`FirstCollisionFinder`, e.g. one whose exact model is slow) is
+asked for that instead of every configuration's verdict.
 """
 
 from __future__ import annotations
 
+import functools
 import math
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -24,13 +28,23 @@ FIRST_BATCH_SIZE = 16
 """Interior configurations checked in the first batch; later batches double."""
 
 
-def _batches(count: int) -> list[slice]:
+@functools.lru_cache(maxsize=4096)
+def _batches(count: int) -> tuple[slice, ...]:
     batches = []
     start, size = 0, FIRST_BATCH_SIZE
     while start < count:
         batches.append(slice(start, min(count, start + size)))
         start, size = start + size, size * 2
-    return batches
+    return tuple(batches)
+
+
+@runtime_checkable
+class FirstCollisionFinder(Protocol):
+    """A checker that finds the first colliding row of a batch without deciding the rows after it."""
+
+    def first_invalid(self, qs: JointConfigurations) -> int | None:
+        """Index of the first row of ``qs`` (n, d) that is not valid, or None when all are."""
+        ...
 
 
 class CountingSegmentChecker:
@@ -42,11 +56,21 @@ class CountingSegmentChecker:
         self.checker = checker
         self.resolution = resolution
         self.configurations_checked = 0
+        self._finder = checker if isinstance(checker, FirstCollisionFinder) else None
 
     def are_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Check a batch of configurations, shape (n, d), counting each."""
         self.configurations_checked += len(qs)
         return np.asarray(self.checker.is_valid(qs), dtype=np.bool_)
+
+    def first_invalid(self, qs: JointConfigurations) -> int | None:
+        """Index of the first invalid row of a batch (n, d), or None; counts each row, as the
+        rows after the first collision would have been checked by ``are_valid``."""
+        if self._finder is not None:
+            self.configurations_checked += len(qs)
+            return self._finder.first_invalid(qs)
+        valid = self.are_valid(qs)
+        return None if bool(np.all(valid)) else int(np.argmin(valid))
 
     def is_valid(self, q: JointConfiguration) -> bool:
         """Check one configuration."""
@@ -66,12 +90,12 @@ class CountingSegmentChecker:
         vouches for with `check_start=False` / `check_end=False`.
         """
         endpoints = [q for q, check in ((q0, check_start), (q1, check_end)) if check]
-        if endpoints and not np.all(self.are_valid(np.stack(endpoints))):
+        if endpoints and self.first_invalid(np.stack(endpoints)) is not None:
             return False
         fractions = interior_fractions(q0, q1, self.resolution)
         for batch in _batches(len(fractions)):
             qs = q0 + fractions[batch, np.newaxis] * (q1 - q0)
-            if not np.all(self.are_valid(qs)):
+            if self.first_invalid(qs) is not None:
                 return False
         return True
 
@@ -91,8 +115,8 @@ class CountingSegmentChecker:
         lengths *= self.resolution
         for batch in _batches(len(lengths)):
             qs = q0 + (lengths[batch, np.newaxis] / distance) * (q1 - q0)
-            valid = self.are_valid(qs)
-            if not np.all(valid):
-                first_invalid = batch.start + int(np.argmin(valid))
+            first_in_batch = self.first_invalid(qs)
+            if first_in_batch is not None:
+                first_invalid = batch.start + first_in_batch
                 return float(lengths[first_invalid - 1]) if first_invalid else 0.0
         return distance

@@ -1,4 +1,4 @@
-"""Path smoothing as its own step: vertex shortcuts, random shortcuts, corner cutting, pruning.
+"""Path smoothing as its own step: vertex shortcuts, random shortcuts, pruning, corner cutting.
 
 Nearly all the time smoothing takes goes to collision checks, and a segment
 that turns out free costs its whole length / `edge_resolution` checks. So:
@@ -8,6 +8,10 @@ that turns out free costs its whole length / `edge_resolution` checks. So:
   no new check (see `_piece_known_free`);
 - waypoints are first joined greedily to the furthest waypoint they see, which
   removes most of a planner's detours for a few segment checks;
+- waypoints are pruned before corners are cut, not after: a cut corner leaves two
+  waypoints close together whose pruning would re-check most of the neighbouring
+  segments (on the kitchen's queries pruning first takes about a fifth fewer checks
+  in all, for paths no longer);
 - a random shortcut is only checked when it would shorten the path by at least
   `min_gain_per_length` of its own length (short gains on long segments are
   where checks used to go), and random shortcutting stops after
@@ -40,8 +44,8 @@ class ShortcutHyperparameters:
     are tried, stopping early after `max_unsuccessful_tries` tries in a row
     took none (None: never stop early); a try whose shortcut would save less
     than `min_gain_per_length` times its own length counts as unsuccessful
-    without a collision check. Then `corner_cutting_passes` passes of
-    `cut_corners`, then (if `prune_waypoints`) one pruning pass.
+    without a collision check. Then (if `prune_waypoints`) one pruning pass,
+    then `corner_cutting_passes` passes of `cut_corners`.
 
     The defaults were chosen on the kitchen queries of `benchmarks/motion.py`:
     about a twelfth of the checks of the former ones (200 tries, each checked,
@@ -256,7 +260,7 @@ def shortcut_path(
     seed: int = 0,
     time_budget_s: float = 1.0,
 ) -> SmoothingResult:
-    """Shorten a collision-free path: vertex shortcuts, random shortcuts, corner cutting, pruning.
+    """Shorten a collision-free path: vertex shortcuts, random shortcuts, pruning, corner cutting.
 
     Random shortcut endpoints are drawn uniformly by arc length, then moved to
     the nearest configuration at which their segment was checked; a shortcut
@@ -294,14 +298,14 @@ def shortcut_path(
             current = _without_repeats(shorter)
             shortcuts += 1
             unsuccessful_in_a_row = 0
-    for _ in range(params.corner_cutting_passes):
-        if len(current) <= 2 or time.perf_counter() >= deadline:
-            break
-        current = _without_repeats(cut_corners(current, segments))
     if params.prune_waypoints and len(current) > 2:
         pruned = prune_waypoints(current, segments)
         if path_length(pruned) <= path_length(current):
             current = pruned
+    for _ in range(params.corner_cutting_passes):
+        if len(current) <= 2 or time.perf_counter() >= deadline:
+            break
+        current = _without_repeats(cut_corners(current, segments))
     return SmoothingResult(
         path=current,
         iterations=iterations,

@@ -16,6 +16,7 @@ colliding the model finds colliding; the reverse may not hold near contact.
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 import numpy as np
@@ -28,6 +29,7 @@ from kitchen_tamp.motion.sphere_covering import DEFAULT_COVERING_TOLERANCE
 from kitchen_tamp.motion.sphere_distances import SpherePairs, pair_distances, pair_distances_and_gradients
 from kitchen_tamp.motion.sphere_kernels import valid_configurations
 from kitchen_tamp.motion.sphere_scene import PYBULLET_MESH_MARGIN, SphereScene
+from kitchen_tamp.motion.sphere_urdf import read_urdf
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -59,6 +61,32 @@ class SphereCollisionChecker:
         self.segment_resolution = float(segment_resolution)
         self._segments = CountingSegmentChecker(self, segment_resolution)
         self._kernel_arguments = self._arrays()
+        self.padding = self._padding_per_group(scene, mesh_padding)
+        """(groups,) how much each group's spheres were padded beyond its collision hulls (m): the mesh
+        margin PyBullet adds and a model of the bare hulls (Drake's) does not."""
+        self._unpadded = self._unpadded_passes()
+
+    def _padding_per_group(self, scene: DescribedScene, mesh_padding: float) -> FloatArray:
+        """A robot link covered only by meshes is padded by ``mesh_padding`` (as `SphereScene` pads
+        them); boxes and carried bodies are not padded."""
+        robot = next(b for b in scene.bodies if b.name == scene.robot)
+        kinds: dict[str, set[str]] = {}
+        for shape in read_urdf(robot.urdf_path).collisions:
+            kinds.setdefault(shape.link, set()).add(shape.kind)
+        return np.array(
+            [
+                mesh_padding if group.role != "carried" and kinds.get(group.link) == {"mesh"} else 0.0
+                for group in self.model.groups
+            ],
+            dtype=float,
+        )
+
+    def with_margin(self, margin: float) -> SphereCollisionChecker:
+        """The same model keeping ``margin`` instead (sharing the scene and the kernel's arrays)."""
+        twin = copy.copy(self)
+        twin.margin = float(margin)
+        twin._segments = CountingSegmentChecker(twin, self.segment_resolution)
+        return twin
 
     def _arrays(self) -> tuple[Any, ...]:
         model, layout = self.model, self.model.tree.flat_layout()
@@ -110,6 +138,32 @@ class SphereCollisionChecker:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""
         batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
         return np.asarray(_VALID_CONFIGURATIONS(batch, *self._kernel_arguments, self.margin), dtype=np.bool_)
+
+    def is_valid_without_padding(self, qs: JointConfigurations) -> ValidityMask:
+        """``is_valid`` with each pair's margin lowered by its groups' padding: the verdict of the
+        spheres covering the bare collision hulls, so a row found valid here is clear of the margin
+        for a model of the bare meshes (Drake's), though PyBullet (whose distances include the
+        mesh margin) may find it closer."""
+        batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
+        valid = np.ones(len(batch), dtype=np.bool_)
+        for offset, arguments in self._unpadded:
+            rows = np.flatnonzero(valid)
+            if len(rows) == 0:
+                break
+            valid[rows] = _VALID_CONFIGURATIONS(batch[rows], *arguments, self.margin - offset)
+        return valid
+
+    def _unpadded_passes(self) -> list[tuple[float, tuple[Any, ...]]]:
+        """Kernel arguments per margin offset, each with the pairs whose padding sums to it."""
+        *shared, box_pairs, group_pairs = self._kernel_arguments
+        box_offsets = self.padding[box_pairs[:, 0]]
+        pair_offsets = self.padding[group_pairs[:, 0]] + self.padding[group_pairs[:, 1]]
+        passes = []
+        for offset in sorted(set(box_offsets.tolist()) | set(pair_offsets.tolist())):
+            boxes = np.ascontiguousarray(box_pairs[box_offsets == offset])
+            groups = np.ascontiguousarray(group_pairs[pair_offsets == offset])
+            passes.append((offset, (*shared, boxes, groups)))
+        return passes
 
     def is_valid_uncompiled(self, qs: JointConfigurations) -> ValidityMask:
         """The same verdicts as ``is_valid`` from every pair's distance in numpy (a reference)."""

@@ -1,4 +1,4 @@
-"""Finding and reading PDDL files: cheap to import (no Lark, no ``pddl`` package).
+"""Finding and reading PDDL files: cheap to import (no Lark, no ``pddl`` package, no ``pathlib``).
 
 A run served from the task cache (``task_cache``) needs these and nothing of
 the parser, so they live apart from ``pddl_files``.
@@ -6,12 +6,35 @@ the parser, so they live apart from ``pddl_files``.
 
 from __future__ import annotations
 
-from pathlib import Path
+import os
 
 from kitchen_tamp.planning.errors import PlanningInputError
 
-PDDL_DIR = Path(__file__).resolve().parents[3] / "pddl"
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from pathlib import Path
+
+PDDL_FOLDER = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.realpath(__file__))))), "pddl")
 """The repository's ``pddl/`` folder, where bare problem names are also looked up."""
+
+
+def is_bare_name(path: str) -> bool:
+    """A name without a folder, as ``pathlib`` has it (``Path(path).parent == Path(".")``)."""
+    if os.path.isabs(path):
+        return False
+    if os.altsep:
+        path = path.replace(os.altsep, os.sep)
+    return len([part for part in path.split(os.sep) if part not in ("", ".")]) <= 1
+
+
+def resolve_problem_file(problem: str | os.PathLike[str]) -> str:
+    """``resolve_problem_path`` as a plain string, for start-up code that does without ``pathlib``."""
+    given = os.fspath(problem)
+    if os.path.exists(given or ".") or not is_bare_name(given):
+        return given
+    candidate = os.path.join(PDDL_FOLDER, given)
+    return candidate if os.path.exists(candidate) else given
 
 
 def resolve_problem_path(problem: str | Path) -> Path:
@@ -20,11 +43,9 @@ def resolve_problem_path(problem: str | Path) -> Path:
     This lets ``activity_planning.py problem_hard.pddl`` work from the
     repository root as well as from inside ``pddl/``.
     """
-    path = Path(problem)
-    if path.exists() or path.parent != Path("."):
-        return path
-    candidate = PDDL_DIR / path
-    return candidate if candidate.exists() else path
+    from pathlib import Path
+
+    return Path(resolve_problem_file(problem))
 
 
 def read_pddl(path: Path, what: str) -> str:

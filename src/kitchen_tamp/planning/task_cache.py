@@ -24,20 +24,20 @@ entries are kept (the least recently used go first), each at most
 
 from __future__ import annotations
 
-import contextlib
 import marshal
 import os
 import sys
-from collections.abc import Iterable
-from pathlib import Path
 
 import kitchen_tamp
-from kitchen_tamp.planning.pddl_paths import resolve_problem_path
+from kitchen_tamp.planning.pddl_paths import resolve_problem_file
 from kitchen_tamp.planning.task import GroundAction, Task, bits
+from kitchen_tamp.user_cache import cache_folder
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
+    from collections.abc import Iterable
     from hashlib import sha256
+    from pathlib import Path
     from typing import Any
 else:
     try:  # the built-in SHA-256: ``hashlib`` would load OpenSSL first, a few ms at every start
@@ -59,22 +59,25 @@ TASK_SOURCES = ("errors.py", "grounding.py", "loading.py", "pddl_files.py", "pdd
 """Our modules whose code decides what a loaded task is; editing one makes every entry stale."""
 
 ENTRY_SUFFIX = ".task"
+ENTRY_FOLDER = "tasks"
+"""The entries' folder, in the user's cache directory."""
 
 
 def task_cache_directory() -> Path:
     """Where the entries live (raises ``RuntimeError`` without a home directory, as ``cache_directory``)."""
-    from kitchen_tamp.user_cache import cache_directory
+    from pathlib import Path  # the planner's start-up works on plain strings
 
-    return cache_directory() / "tasks"
+    return Path(cache_folder(), ENTRY_FOLDER)
 
 
 def load_task_cached(problem_path: str | Path, domain_path: str | Path | None = None) -> Task:
     """``load_task(problem_path, domain_path)``, served from the cache when the files are unchanged."""
-    problem_file = resolve_problem_path(problem_path)
-    domain_file = Path(domain_path) if domain_path is not None else problem_file.parent / "domain.pddl"
+    problem_file = resolve_problem_file(problem_path)
+    domain_file = (os.fspath(domain_path) if domain_path is not None
+                   else os.path.join(os.path.dirname(problem_file), "domain.pddl"))
     try:
-        key = task_key(domain_file.read_bytes(), problem_file.read_bytes())
-        entry: Path | None = task_cache_directory() / (key + ENTRY_SUFFIX)
+        key = task_key(_read_bytes(domain_file), _read_bytes(problem_file))
+        entry: str | None = os.path.join(cache_folder(), ENTRY_FOLDER, key + ENTRY_SUFFIX)
     except (OSError, RuntimeError):  # unreadable files (load_task says why) or no home: no cache
         entry = None
     if entry is not None:
@@ -87,6 +90,11 @@ def load_task_cached(problem_path: str | Path, domain_path: str | Path | None = 
     if entry is not None:
         _write_entry(entry, key, task)
     return task
+
+
+def _read_bytes(path: str) -> bytes:
+    with open(path, "rb") as stream:
+        return stream.read()
 
 
 def task_key(domain: bytes, problem: bytes) -> str:
@@ -105,17 +113,17 @@ def _versions_digest() -> bytes:
     from importlib.machinery import PathFinder  # already loaded, unlike importlib.util
 
     digest = sha256()
-    here = Path(__file__).parent
-    files = [here / name for name in TASK_SOURCES]
+    here = os.path.dirname(__file__)
+    files = [os.path.join(here, name) for name in TASK_SOURCES]
     for package, version_file in (("pddl", "__version__.py"), ("lark", "__init__.py")):
         spec = PathFinder.find_spec(package)
         locations = list(spec.submodule_search_locations or []) if spec is not None else []
-        files.extend(Path(location) / version_file for location in locations[:1])
+        files.extend(os.path.join(location, version_file) for location in locations[:1])
     for file in files:
         try:
-            digest.update(file.read_bytes())
+            digest.update(_read_bytes(file))
         except OSError:
-            digest.update(b"missing " + str(file).encode())
+            digest.update(b"missing " + file.encode())
     return digest.digest()
 
 
@@ -151,37 +159,48 @@ def decode_task(fields: tuple[Any, ...]) -> Task:
         unreachable_goal_atoms=unreachable)
 
 
-def _read_entry(entry: Path, key: str) -> Task | None:
+def _read_entry(entry: str, key: str) -> Task | None:
     try:
-        stored_key, fields = marshal.loads(entry.read_bytes())
+        stored_key, fields = marshal.loads(_read_bytes(entry))
         if stored_key != key:
             return None
         task = decode_task(fields)
     except Exception:  # missing, unreadable, truncated, corrupt or another layout: a miss
         return None
-    with contextlib.suppress(OSError):  # recently used; a read-only directory just keeps the old time
+    # Recently used; a read-only directory just keeps the old time. Not contextlib.suppress: one
+    # more import on every start.
+    try:  # noqa: SIM105
         os.utime(entry)
+    except OSError:
+        pass
     return task
 
 
-def _write_entry(entry: Path, key: str, task: Task) -> None:
+def _write_entry(entry: str, key: str, task: Task) -> None:
     data = marshal.dumps((key, encode_task(task)))
     if len(data) > MAX_ENTRY_BYTES:
         return
-    from kitchen_tamp.atomic_files import write_atomically  # imports tempfile: only on a miss
+    import contextlib  # these three, with tempfile (write_atomically): only on a miss
+    from pathlib import Path
+
+    from kitchen_tamp.atomic_files import write_atomically
 
     with contextlib.suppress(OSError):  # an unwritable cache directory costs time next run, nothing else
-        write_atomically(entry, data)
-        _evict(entry.parent)
+        write_atomically(Path(entry), data)
+        _evict(os.path.dirname(entry))
 
 
-def _evict(directory: Path) -> None:
+def _evict(directory: str) -> None:
     """Remove the least recently used entries beyond ``MAX_ENTRIES``."""
+    import contextlib
+
     entries = []
-    for path in directory.glob("*" + ENTRY_SUFFIX):
-        with contextlib.suppress(OSError):  # another process may have removed it meanwhile
-            entries.append((path.stat().st_mtime_ns, path.name, path))
+    with os.scandir(directory) as found:
+        for item in found:
+            if item.name.endswith(ENTRY_SUFFIX):
+                with contextlib.suppress(OSError):  # another process may have removed it meanwhile
+                    entries.append((item.stat().st_mtime_ns, item.name, item.path))
     entries.sort()
     for _, _, path in entries[:max(0, len(entries) - MAX_ENTRIES)]:
         with contextlib.suppress(OSError):
-            path.unlink()
+            os.remove(path)

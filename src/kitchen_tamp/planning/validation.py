@@ -2,21 +2,27 @@
 
 from __future__ import annotations
 
-import re
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
-
+from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.task import Atom, GroundAction, State, Task, atom_text, bits
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
 
 PlanStep = tuple[str, tuple[str, ...]]
 
 
-@dataclass(frozen=True)
-class PlanValidation:
+class PlanValidation(FrozenRecord):
+    """Whether a plan is valid, why not, the state it ends in and the step that failed (1-based)."""
+
+    __slots__ = ("valid", "message", "final_state", "failed_step")  # noqa: RUF023 (the order of __init__)
     valid: bool
     message: str
     final_state: State
-    failed_step: int | None = None  # 1-based
+    failed_step: int | None
+
+    def __init__(self, valid: bool, message: str, final_state: State, failed_step: int | None = None) -> None:
+        self._set_fields(valid=valid, message=message, final_state=final_state, failed_step=failed_step)
 
 
 def _as_step(step: GroundAction | PlanStep) -> PlanStep:
@@ -28,12 +34,13 @@ def _as_step(step: GroundAction | PlanStep) -> PlanStep:
 def validate_plan(task: Task, plan: Iterable[GroundAction | PlanStep]) -> PlanValidation:
     """Apply the plan from the initial state, checking every precondition and the goal."""
     state = task.initial_state
-    schema_names = {a.name.lower() for a in task.actions}
+    actions = _actions_by_name(task)
     for number, raw in enumerate(plan, start=1):
         name, args = _as_step(raw)
-        action = task.action_named(name, args)
+        action = actions.get((name.lower(), tuple(a.lower() for a in args)))
         text = "(" + " ".join((name, *args)) + ")"
         if action is None:
+            schema_names = {a.name.lower() for a in task.actions}
             unknown = [a for a in args if a.lower() not in {o.lower() for o in task.objects}]
             why = (f"unknown object(s) {', '.join(unknown)}" if unknown else
                    f"unknown action '{name}'" if name.lower() not in schema_names else
@@ -52,6 +59,18 @@ def validate_plan(task: Task, plan: Iterable[GroundAction | PlanStep]) -> PlanVa
         unmet = [atom_text(a) for a in sorted(goal_atoms_unmet(task, state))]
         return PlanValidation(False, "plan ends without reaching the goal: " + " ".join(unmet), state)
     return PlanValidation(True, "plan is valid", state)
+
+
+def _actions_by_name(task: Task) -> dict[tuple[str, tuple[str, ...]], GroundAction]:
+    """``Task.action_named`` for every step at once: the first action under each case-folded name.
+
+    One pass over the actions instead of one per step (a 180-step plan on a
+    task of a thousand actions took 30 ms).
+    """
+    index: dict[tuple[str, tuple[str, ...]], GroundAction] = {}
+    for action in task.actions:
+        index.setdefault((action.name.lower(), tuple(a.lower() for a in action.args)), action)
+    return index
 
 
 def goal_atoms_unmet(task: Task, state: State) -> set[Atom]:
@@ -74,16 +93,20 @@ def plan_text(plan: Sequence[GroundAction]) -> str:
     return "\n".join(lines) + "\n"
 
 
-_STEP = re.compile(r"^\s*\(([^()]+)\)\s*(;.*)?$")
+PLAN_STEP_PATTERN = r"^\s*\(([^()]+)\)\s*(;.*)?$"
+"""One plan-file line: ``(name arg ...)`` and an optional ``;`` comment."""
 
 
 def parse_plan_text(text: str) -> list[PlanStep]:
     """Read an IPC plan file: ``(name arg ...)`` lines; ``;`` comments and blank lines skipped."""
+    import re  # on use: the planner's start-up does without it
+
+    step = re.compile(PLAN_STEP_PATTERN)
     steps: list[PlanStep] = []
     for number, line in enumerate(text.splitlines(), start=1):
         if not line.strip() or line.lstrip().startswith(";"):
             continue
-        match = _STEP.match(line)
+        match = step.match(line)
         if match is None:
             raise ValueError(f"line {number}: expected '(action arg ...)', got {line.strip()!r}")
         name, *args = match.group(1).split()

@@ -122,9 +122,11 @@ class SamplingMotionBackend:
         clock = time.perf_counter()
         space = ConfigurationSpace(checker.lower, checker.upper)
         totals = {"iterations": 0, "nodes": 0, "collision_checks": 0, "dense_check_failures": 0}
+        timings = {"planning_s": 0.0, "smoothing_s": 0.0, "dense_check_s": 0.0}
         status = "not attempted"
         for attempt in range(1, self.attempts + 1):
             seed = int(rng.integers(2**31))
+            phase = time.perf_counter()
             if self.planner == "rrt":
                 result = plan_rrt(
                     start, goal, space, checker, self.rrt, seed=seed, time_budget_s=DETERMINISM_TIME_BUDGET_S
@@ -139,6 +141,7 @@ class SamplingMotionBackend:
                     seed=seed,
                     time_budget_s=DETERMINISM_TIME_BUDGET_S,
                 )
+            timings["planning_s"] += time.perf_counter() - phase
             totals["iterations"] += result.iterations
             totals["nodes"] += result.nodes
             totals["collision_checks"] += result.collision_checks
@@ -146,11 +149,15 @@ class SamplingMotionBackend:
             if result.path is None:
                 continue
             raw_length = path_length(result.path)
+            phase = time.perf_counter()
             smoothed = shortcut_path(
                 result.path, checker, self.shortcut, seed=seed, time_budget_s=DETERMINISM_TIME_BUDGET_S
             )
+            timings["smoothing_s"] += time.perf_counter() - phase
             totals["collision_checks"] += smoothed.collision_checks
+            phase = time.perf_counter()
             dense = check_path_densely(smoothed.path, strict_checker, self.dense_resolution)
+            timings["dense_check_s"] += time.perf_counter() - phase
             totals["collision_checks"] += dense.configurations_checked
             if not dense.collision_free:
                 totals["dense_check_failures"] += 1
@@ -164,8 +171,8 @@ class SamplingMotionBackend:
                 "path_length_rad": round(path_length(path), 9),
                 "waypoints": len(path),
             }
-            return MotionSolution(path, "solved", attempt, figures, time.perf_counter() - clock)
-        return MotionSolution(None, status, self.attempts, dict(totals), time.perf_counter() - clock)
+            return MotionSolution(path, "solved", attempt, figures, time.perf_counter() - clock, timings)
+        return MotionSolution(None, status, self.attempts, dict(totals), time.perf_counter() - clock, timings)
 
 
 def _at_least_two_waypoints(

@@ -8,7 +8,9 @@ re-checked with the skill's own PyBullet checker before it is accepted.
 ``spheres`` is the conservative sphere model (`kitchen_tamp.motion.sphere_checker`)
 in front of Drake's (`kitchen_tamp.motion.sphere_screening`): what the spheres
 find free is free (they cover the links), what they reject Drake decides, so
-verdicts are Drake's and most configurations never reach Drake.
+verdicts are Drake's and most configurations never reach Drake. The same
+spheres, at the PyBullet checker's margin, screen the dense post-check of the
+planned path (`strict_checker`), whose verdicts are then PyBullet's.
 """
 
 from __future__ import annotations
@@ -16,7 +18,9 @@ from __future__ import annotations
 from types import MappingProxyType
 
 from kitchen_tamp.kitchen import KitchenScene, SkillTargets
+from kitchen_tamp.motion.collision_checker import CollisionChecker
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -42,12 +46,21 @@ def planning_checker(
             return drake
         # imported here: numba loads only when the sphere model is used
         from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-        from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
 
         spheres = SphereCollisionChecker(description, margin=margin)
-        return SphereScreenedChecker(spheres, drake)
+        return SphereScreenedChecker(spheres, drake, exact_is_bare=True)
     if model == "pybullet":
         with kitchen.scene.preserved():
             kitchen.robot.set_gripper_width(targets.gripper_width)
             return kitchen.collision_checker(margin=margin)
     raise ValueError(f"unknown collision model {model!r}; choose one of {', '.join(COLLISION_MODELS)}")
+
+
+def strict_checker(targets: SkillTargets, planning: BoundedCollisionChecker) -> CollisionChecker:
+    """What a planned path must be free under: the skill's PyBullet checker, screened by the
+    planning checker's spheres (at the PyBullet checker's margin) when it plans with spheres,
+    so that only configurations the spheres reject are asked of PyBullet. Verdicts are PyBullet's."""
+    exact = targets.free_space_checker
+    if isinstance(planning, SphereScreenedChecker):
+        return SphereScreenedChecker(planning.spheres.with_margin(exact.margin), exact)
+    return exact

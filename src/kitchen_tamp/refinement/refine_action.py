@@ -20,7 +20,11 @@ from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, replay_act
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
-from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL, planning_checker
+from kitchen_tamp.refinement.planning_checkers import (
+    DEFAULT_COLLISION_MODEL,
+    planning_checker,
+    strict_checker,
+)
 
 PLANNING_MARGIN = 0.003
 """Clearance (m) free-space moves keep while planned: paths are checked every 0.01 rad,
@@ -102,7 +106,8 @@ def refine_action(
     if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
         # an end is closer than the margin: plan without slack
         checker, margin = planning_checker(kitchen, targets, 0.0, collision_model), 0.0
-    solution = backend.solve(start, targets.goal_configuration, checker, targets.free_space_checker, rng)
+    strict = strict_checker(targets, checker)
+    solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
     seconds = {"skills_s": skills_s, "motion_s": solution.seconds, **solution.timings}
 

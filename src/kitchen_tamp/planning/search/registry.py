@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import importlib
 
-from kitchen_tamp.planning.search.result import SearchResult
-from kitchen_tamp.planning.task import Task
-
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
     from typing import Protocol
+
+    from kitchen_tamp.planning.search.result import SearchResult
+    from kitchen_tamp.planning.task import Task
 
     class Search(Protocol):
         def __call__(

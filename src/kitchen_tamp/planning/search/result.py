@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass
 from itertools import pairwise
 
+from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.task import GroundAction, State, Task
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
-    from typing import Literal
+    from collections.abc import Mapping
+    from typing import Literal, TypeAlias
 
     SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
 """``unsolvable``: the reachable states were exhausted without a goal (a proof);
@@ -19,8 +19,11 @@ if TYPE_CHECKING:
 nothing; ``budget``: time or expansions ran out."""
 
 
-@dataclass(frozen=True)
-class SearchResult:
+class SearchResult(FrozenRecord):
+    """What a search found (``plan``, None without one), why it stopped, and what it cost."""
+
+    __slots__ = (  # noqa: RUF023 (the order of __init__)
+        "planner", "status", "plan", "expanded", "generated", "evaluated", "seconds", "message")
     planner: str
     status: SearchStatus
     plan: tuple[GroundAction, ...] | None
@@ -28,14 +31,19 @@ class SearchResult:
     generated: int
     evaluated: int
     seconds: float
-    message: str = ""
+    message: str
+
+    def __init__(self, planner: str, status: SearchStatus, plan: tuple[GroundAction, ...] | None,
+                 expanded: int, generated: int, evaluated: int, seconds: float, message: str = "") -> None:
+        self._set_fields(planner=planner, status=status, plan=plan, expanded=expanded, generated=generated,
+                         evaluated=evaluated, seconds=seconds, message=message)
 
     @property
     def solved(self) -> bool:
         return self.status == "solved"
 
 
-StateParents = Mapping[State, State | None]
+StateParents: TypeAlias = "Mapping[State, State | None]"  # a string: collections.abc is not loaded here
 """Each reached state's parent (None at the root); the actions are recovered afterwards."""
 
 
