@@ -35,6 +35,7 @@ bench: install
 	$(BIN)/python benchmarks/motion.py --query-set kitchen
 	$(BIN)/python benchmarks/collision.py
 	$(BIN)/python benchmarks/trajopt.py
+	$(BIN)/python benchmarks/clearance.py
 	$(BIN)/python benchmarks/bilevel.py
 
 clean:

@@ -21,9 +21,9 @@ Pairings (ours / pyperplan / Fast Downward):
 - ``astar``: A* with h_max / ``astar`` + ``hmax`` / ``astar(hmax())``
 - ``ehc``: enforced hill climbing, h_FF, helpful actions first / ``ehs`` + ``hff``
   with preferred operators (pruning, no fallback) / ``ehc(h, preferred=[h])``
-- ``gbfs``: greedy best-first, h_FF, alternating preferred/all queues boosted on progress /
-  ``gbf`` + ``hff`` with preferred operators (pruning) /
-  ``eager_greedy([h], preferred=[h], boost=1000)``
+- ``gbfs``: greedy best-first, h_FF, lazy evaluation, alternating preferred/all (and novel)
+  queues boosted on progress / ``gbf`` + ``hff`` with preferred operators (pruning) /
+  ``lazy_greedy([h], preferred=[h], boost=1000)``
 - ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
   pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
 
@@ -86,7 +86,7 @@ PAIRINGS: dict[str, Pairing] = {
     "bfs": Pairing("bfs", None, False, "astar(blind())"),
     "astar": Pairing("astar", "hmax", False, "astar(hmax())"),
     "ehc": Pairing("ehs", "hff", True, "let(h, ff(), ehc(h, preferred=[h]))"),
-    "gbfs": Pairing("gbf", "hff", True, "let(h, ff(), eager_greedy([h], preferred=[h], boost=1000))"),
+    "gbfs": Pairing("gbf", "hff", True, "let(h, ff(), lazy_greedy([h], preferred=[h], boost=1000))"),
     "ehc-plain": Pairing("ehs", "hff", False, "ehc(ff())"),
     "gbfs-plain": Pairing("gbf", "hff", False, "eager_greedy([ff()])"),
 }

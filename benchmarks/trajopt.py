@@ -1,25 +1,30 @@
-"""Trajectory optimisation on the kitchen's free-space motions: which formulation is collision-free?
+"""Trajectory optimisation on the kitchen's free-space motions: which formulation is collision-free,
+and how fast with Drake's distances against the sphere model's clearance?
 
 Every query of the ``kitchen`` set of ``benchmarks/motion.py`` (the moves of the
-kitchen task's BFS plans) is solved by six variants. Optimisation sees Drake's
-model of the query's scene (minimum signed distance and gradient, 5 mm margin
-as in ``DEFAULT_SETTINGS``); sampling plans with the same Drake model keeping
-the pipeline's 3 mm planning margin (none when an end is closer), exactly as
-``refine_action`` sets it up. Whatever a variant returns is verified the same
+kitchen task's BFS plans) is solved by seven variants. Variants 1-5 optimise
+against Drake's model of the query's scene (minimum signed distance and gradient,
+5 mm margin as in ``DEFAULT_SETTINGS``); sampling plans with the same Drake model
+keeping the pipeline's 3 mm planning margin (none when an end is closer), exactly
+as ``refine_action`` sets it up. Whatever a variant returns is verified the same
 way: start and goal held, and the query's own PyBullet checker finds no
 collision at every 0.005 rad along the path (``check_path_densely``).
 
 1. ``original``: the class project's program, N=50 waypoints, no collision
    constraints, from the straight line;
-2. ``straight``: ours (N=50, signed distance >= 5 mm at and midway between
-   waypoints) from the straight line, one attempt;
+2. ``straight``: ours (``DEFAULT_SETTINGS``) from the straight line, one attempt;
 3. ``rrt warm``: ours warm-started from variant 6's path only (its CPU time
    includes planning that path);
-4. ``full``: ``OptimizingMotionBackend().solve`` (straight line, then the RRT
-   warm start, then twice the waypoints), which plans its own reference path;
+4. ``full, Drake``: ``OptimizingMotionBackend().solve`` planning with Drake's
+   model alone (``--collision-model drake``): Drake's distances, from the
+   straight line when it is free, else from its own RRT-Connect path;
 5. ``sparse``: ours with N=25 and no samples between waypoints, from the
    straight line;
-6. ``rrt``: ``SamplingMotionBackend`` (RRT-Connect + shortcut), the yardstick.
+6. ``rrt``: ``SamplingMotionBackend`` (RRT-Connect + shortcut), the yardstick;
+7. ``full, spheres``: the back end as the pipeline runs it by default, planning
+   with the sphere model in front of Drake's: the sphere model's smooth
+   clearance first, Drake's distances only as the last attempt. Variants 4 and 7
+   side by side are what the sphere model buys.
 
 N is raised to what ``max_step`` needs for long moves, as the back end does.
 "solver success" is what the solver (or back end) reports, "verified" what the
@@ -31,9 +36,6 @@ only. Deterministic for a seed.
     .venv/bin/python benchmarks/trajopt.py                        # 16 queries x seeds 0 and 1
     .venv/bin/python benchmarks/trajopt.py --queries 24 --per-query
     .venv/bin/python benchmarks/trajopt.py --queries 8 --seeds 3
-
-The default takes about 5 CPU minutes (7 wall minutes on a busy 2-core machine);
-``--queries 24`` about 7 CPU minutes. Most of it is variants 2-4 on a few hard moves.
 """
 
 from __future__ import annotations
@@ -59,7 +61,14 @@ from kitchen_tamp.motion import (
     path_length,
 )
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.trajectory_program import SignedDistanceFunction, TrajectoryOptimizationSettings
+from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+from kitchen_tamp.motion.trajectory_program import (
+    Clearance,
+    SignedDistanceFunction,
+    TrajectoryOptimizationSettings,
+    one_at_a_time,
+)
 from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     MotionSolution,
@@ -94,6 +103,8 @@ class Case:
     query: MotionQuery
     strict: PyBulletCollisionChecker
     planning: DrakeCollisionChecker
+    spheres: SphereScreenedChecker
+    """The pipeline's default planning model: the sphere model in front of ``planning``."""
     space: ConfigurationSpace
     seed: tuple[int, int]
     hard: bool
@@ -140,7 +151,8 @@ def _optimise(
     settings = _enough_waypoints(settings, start, goal)
     clock = time.process_time()
     try:
-        result = optimize_trajectory(start, goal, case.space, signed_distance, settings, initial_path=guide)
+        clearance: Clearance = one_at_a_time(signed_distance)
+        result = optimize_trajectory(start, goal, case.space, clearance, settings, initial_path=guide)
     except InvalidMotionQueryError as error:
         return Outcome(False, False, time.process_time() - clock + extra_cpu_s, math.nan, str(error))
     cpu_s = time.process_time() - clock + extra_cpu_s
@@ -168,9 +180,17 @@ def run_rrt_warm_start(case: Case) -> Outcome:
 
 
 def run_full(case: Case) -> Outcome:
+    return _run_backend(case, case.planning)
+
+
+def run_full_spheres(case: Case) -> Outcome:
+    return _run_backend(case, case.spheres)
+
+
+def _run_backend(case: Case, planning: DrakeCollisionChecker | SphereScreenedChecker) -> Outcome:
     clock = time.process_time()
     solution = OptimizingMotionBackend().solve(
-        case.query.start, case.query.goal, case.planning, case.strict, np.random.default_rng(case.seed)
+        case.query.start, case.query.goal, planning, case.strict, np.random.default_rng(case.seed)
     )
     cpu_s = time.process_time() - clock
     attempts = solution.figures.get("attempts")
@@ -194,13 +214,16 @@ def run_rrt(case: Case) -> Outcome:
     return Outcome(True, verified, case.reference_cpu_s, path_length(reference.path))
 
 
+FULL_DRAKE = "4 full back end, Drake distances"
+FULL_SPHERES = "7 full back end, sphere clearance (the pipeline's)"
 VARIANTS: dict[str, Callable[[Case], Outcome]] = {
     "1 original (N=50, no collision constraint)": run_original,
     "2 ours, straight line only": run_straight,
     "3 ours, RRT-Connect warm start only": run_rrt_warm_start,
-    "4 full back end": run_full,
+    FULL_DRAKE: run_full,
     "5 sparse (N=25, no samples between)": run_sparse,
     "6 RRT-Connect + shortcut": run_rrt,
+    FULL_SPHERES: run_full_spheres,
 }
 YARDSTICK = "6 RRT-Connect + shortcut"
 
@@ -211,12 +234,16 @@ def prepare(query: MotionQuery, seed: tuple[int, int]) -> Case:
         raise TypeError(f"{query.name}: expected a PyBullet checker, got {type(query.checker).__name__}")
     strict = query.checker
     description = describe_collision_checker(strict)
-    planning = DrakeCollisionChecker(description, margin=PLANNING_MARGIN)
+    margin = PLANNING_MARGIN
+    planning = DrakeCollisionChecker(description, margin=margin)
     if not planning.is_valid(np.stack([query.start, query.goal])).all():
-        planning = DrakeCollisionChecker(description, margin=0.0)  # an end is closer: no slack
+        margin = 0.0  # an end is closer: no slack
+        planning = DrakeCollisionChecker(description, margin=margin)
+    spheres = SphereScreenedChecker(SphereCollisionChecker(description, margin=margin), planning)
     straight = np.stack([query.start, query.goal])
     hard = not check_path_densely(straight, strict, JUDGE_RESOLUTION_RAD).collision_free
-    case = Case(query, strict, planning, ConfigurationSpace(planning.lower, planning.upper), seed, hard)
+    space = ConfigurationSpace(planning.lower, planning.upper)
+    case = Case(query, strict, planning, spheres, space, seed, hard)
     clock = time.process_time()
     reference = SamplingMotionBackend().solve(
         query.start, query.goal, planning, strict, np.random.default_rng(seed)
@@ -331,7 +358,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     hard = sum(case.hard for case in cases)
     print(
         f"{len(cases)} kitchen queries ({args.queries} per seed, seeds {' '.join(map(str, args.seeds))}), "
-        f"{hard} hard; optimisation: {nonlinear_solver().solver_id().name()} on Drake signed distance, "
+        f"{hard} hard; optimisation: {nonlinear_solver().solver_id().name()} "
+        "(variants 1-5 on Drake signed distance), "
         f"margin {DEFAULT_SETTINGS.collision_margin} m; "
         f"verified: PyBullet, every {JUDGE_RESOLUTION_RAD} rad"
     )
@@ -339,10 +367,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(format_table([summarise(v, cases, results) for v in VARIANTS], len(cases), hard))
     print()
     print(format_by_seed(args.seeds, cases, results))
-    full = [run.detail for run in results["4 full back end"] if run.verified]
-    attempts = {detail: full.count(detail) for detail in sorted(set(full))}
     print()
-    print("full back end, verified at: " + ", ".join(f"{d}: {n}" for d, n in attempts.items()))
+    for variant in (FULL_DRAKE, FULL_SPHERES):
+        full = [run.detail for run in results[variant] if run.verified]
+        attempts = {detail: full.count(detail) for detail in sorted(set(full))}
+        print(f"{variant}, verified at: " + ", ".join(f"{d}: {n}" for d, n in attempts.items()))
     if args.per_query:
         print()
         print(format_per_query(cases, results))

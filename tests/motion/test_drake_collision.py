@@ -12,7 +12,7 @@ import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.trajectory_program import SignedDistanceConstraint
+from kitchen_tamp.motion.trajectory_program import ClearanceConstraint, one_at_a_time
 from kitchen_tamp.world import (
     AllowedContact,
     Pose,
@@ -146,13 +146,15 @@ def test_signed_distance_gradient_is_the_finite_difference(free: CheckerPair, ho
 
 
 def test_signed_distance_plugs_into_trajectory_optimisation(free: CheckerPair) -> None:
-    from pydrake.autodiffutils import AutoDiffXd, ExtractGradient, ExtractValue
+    from pydrake.autodiffutils import ExtractGradient, ExtractValue, InitializeAutoDiff
 
     q = free.drake.lower * 0.3 + free.drake.upper * 0.7
     value, gradient = free.drake.signed_distance(q)
-    constraint = SignedDistanceConstraint(free.drake.signed_distance)
-    variables = np.array([AutoDiffXd(v, np.eye(7)[i]) for i, v in enumerate(q)], dtype=object)
-    (evaluated,) = constraint(variables)
-    extracted: Any = (ExtractValue(np.array([evaluated])), ExtractGradient(np.array([evaluated])))
+    # one row: the waypoint q itself, out of a run of two waypoints
+    constraint = ClearanceConstraint(one_at_a_time(free.drake.signed_distance), np.array([[1.0, 0.0]]), [0])
+    variables = InitializeAutoDiff(np.concatenate([q, np.zeros(7)])).reshape(-1)
+    evaluated = constraint(variables)
+    extracted: Any = (ExtractValue(evaluated), ExtractGradient(evaluated))
     assert float(np.ravel(extracted[0])[0]) == value
-    assert np.allclose(np.ravel(extracted[1]), gradient)
+    assert np.allclose(np.ravel(extracted[1])[:7], gradient)
+    assert np.all(np.ravel(extracted[1])[7:] == 0.0)

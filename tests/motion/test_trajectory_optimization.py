@@ -14,6 +14,7 @@ from kitchen_tamp.motion.path_verification import check_path_densely
 from kitchen_tamp.motion.trajectory_program import (
     TrajectoryOptimizationSettings,
     build_trajectory_program,
+    one_at_a_time,
 )
 from kitchen_tamp.motion.trajectory_solver import (
     nonlinear_solver,
@@ -36,9 +37,12 @@ def disc_signed_distance(q: npt.NDArray[np.float64]) -> tuple[float, npt.NDArray
     return distance - RADIUS, offset / max(distance, 1e-12)
 
 
+DISC_CLEARANCE = one_at_a_time(disc_signed_distance)
+
+
 def test_optimum_avoids_the_disc_the_straight_line_hits() -> None:
     assert not check_path_densely(np.stack([START, GOAL]), WORLD, 1e-3).collision_free
-    result = optimize_trajectory(START, GOAL, SPACE, disc_signed_distance, SETTINGS)
+    result = optimize_trajectory(START, GOAL, SPACE, DISC_CLEARANCE, SETTINGS)
     assert result.success, result.solution_status
     assert result.waypoints.shape == (30, 2)
     np.testing.assert_allclose(result.waypoints[0], START, atol=1e-9)
@@ -55,7 +59,7 @@ def test_optimum_avoids_the_disc_the_straight_line_hits() -> None:
 def test_build_solve_reconstruct_is_deterministic() -> None:
     results = []
     for _ in range(2):
-        problem = build_trajectory_program(START, GOAL, SPACE, disc_signed_distance, SETTINGS)
+        problem = build_trajectory_program(START, GOAL, SPACE, DISC_CLEARANCE, SETTINGS)
         results.append(reconstruct_trajectory(problem, solve_trajectory_program(problem), 0.0))
     np.testing.assert_array_equal(results[0].waypoints, results[1].waypoints)
     assert results[0].cost == results[1].cost
@@ -65,21 +69,21 @@ def test_warm_start_from_rrt_connect_path() -> None:
     planned = plan_rrt_connect(
         START, GOAL, SPACE, WORLD, RrtConnectHyperparameters(step_size=0.2), seed=0
     ).require_path()
-    result = optimize_trajectory(START, GOAL, SPACE, disc_signed_distance, SETTINGS, initial_path=planned)
+    result = optimize_trajectory(START, GOAL, SPACE, DISC_CLEARANCE, SETTINGS, initial_path=planned)
     assert result.success
     assert check_path_densely(result.waypoints, WORLD, 1e-3).collision_free
 
 
 def test_goal_in_collision_fails() -> None:
     goal_in_disc = CENTER + np.array([0.1, 0.0])
-    result = optimize_trajectory(START, goal_in_disc, SPACE, disc_signed_distance, SETTINGS)
+    result = optimize_trajectory(START, goal_in_disc, SPACE, DISC_CLEARANCE, SETTINGS)
     assert not result.success
     assert result.solution_status == "goal in collision"
 
 
 def test_a_goal_closer_than_the_margin_but_free_is_reached() -> None:
     goal_near_disc = CENTER + np.array([RADIUS + 0.5 * SETTINGS.collision_margin, 0.0])
-    result = optimize_trajectory(START, goal_near_disc, SPACE, disc_signed_distance, SETTINGS)
+    result = optimize_trajectory(START, goal_near_disc, SPACE, DISC_CLEARANCE, SETTINGS)
     assert result.success, result.solution_status
     np.testing.assert_allclose(result.waypoints[-1], goal_near_disc, atol=1e-9)
     interior = [disc_signed_distance(q)[0] for q in result.waypoints[1:-1]]
@@ -90,7 +94,7 @@ def test_points_between_waypoints_keep_the_margin() -> None:
     coarse = TrajectoryOptimizationSettings(
         num_waypoints=8, max_step=0.3, collision_margin=0.02, samples_between_waypoints=3
     )
-    result = optimize_trajectory(START, GOAL, SPACE, disc_signed_distance, coarse)
+    result = optimize_trajectory(START, GOAL, SPACE, DISC_CLEARANCE, coarse)
     assert result.success, result.solution_status
     for a, b in zip(result.waypoints[:-1], result.waypoints[1:], strict=True):
         for fraction in (0.25, 0.5, 0.75):
@@ -100,7 +104,7 @@ def test_points_between_waypoints_keep_the_margin() -> None:
 def test_unreachable_step_bound_is_rejected() -> None:
     tight = TrajectoryOptimizationSettings(num_waypoints=5, max_step=0.1)
     with pytest.raises(InvalidMotionQueryError, match="raise num_waypoints or max_step"):
-        build_trajectory_program(START, GOAL, SPACE, disc_signed_distance, tight)
+        build_trajectory_program(START, GOAL, SPACE, DISC_CLEARANCE, tight)
 
 
 def test_seven_joints_around_a_ball() -> None:
@@ -113,6 +117,6 @@ def test_seven_joints_around_a_ball() -> None:
         return distance - 0.8, offset / distance
 
     start, goal = np.r_[-1.5, np.zeros(6)], np.r_[1.5, np.zeros(6)]
-    result = optimize_trajectory(start, goal, space, signed_distance)
+    result = optimize_trajectory(start, goal, space, one_at_a_time(signed_distance))
     assert result.success and result.waypoints.shape == (50, 7)
     assert check_path_densely(result.waypoints, BoxBallWorld(balls=[(center, 0.8)]), 1e-3).collision_free

@@ -15,6 +15,16 @@ def data_task(problem: str, domain: str) -> Task:
     return load_task(DATA / problem, DATA / domain)
 
 
+def written_task(tmp_path: Path, domain_text: str, domain_name: str, problem_name: str,
+                 objects: list[str], facts: list[str], goal: str) -> Task:
+    """Write a generated problem and its domain into ``tmp_path`` and load them."""
+    problem = (f"(define (problem {problem_name}) (:domain {domain_name}) (:objects {' '.join(objects)})\n"
+               f"  (:init {' '.join(facts)})\n  (:goal {goal}))\n")
+    (tmp_path / "domain.pddl").write_text(domain_text)
+    (tmp_path / "problem.pddl").write_text(problem)
+    return load_task(tmp_path / "problem.pddl", tmp_path / "domain.pddl")
+
+
 SMALL_TASKS = {
     "kitchen": (KITCHEN / "problem.pddl", KITCHEN / "domain.pddl"),
     "kitchen_hard": (KITCHEN / "problem_hard.pddl", KITCHEN / "domain.pddl"),

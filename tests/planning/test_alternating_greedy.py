@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from kitchen_tamp.planning import Task, greedy_best_first_search, load_task, validate_plan
+from kitchen_tamp.planning import Task, greedy_best_first_search, validate_plan
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.search.alternating_greedy import AlternatingQueues
-from tests.planning.conftest import data_task
+from tests.planning.conftest import data_task, written_task
 
 GATE_DOMAIN = """(define (domain gate-trap)
   (:requirements :strips)
@@ -43,12 +43,8 @@ def gate_trap(tmp_path: Path, cells: int) -> Task:
              f"(road-end r{road - 1})"]
     facts += [f"(adj c{i} c{i + 1}) (adj c{i + 1} c{i})" for i in range(cells - 1)]
     facts += [f"(road-next r{i} r{i + 1})" for i in range(road - 1)]
-    objects = " ".join([f"c{i}" for i in range(cells)] + [f"r{i}" for i in range(road)])
-    problem = (f"(define (problem gate-{cells}) (:domain gate-trap) (:objects {objects})\n"
-               f"  (:init {' '.join(facts)})\n  (:goal (done)))\n")
-    (tmp_path / "domain.pddl").write_text(GATE_DOMAIN)
-    (tmp_path / "problem.pddl").write_text(problem)
-    return load_task(tmp_path / "problem.pddl", tmp_path / "domain.pddl")
+    objects = [f"c{i}" for i in range(cells)] + [f"r{i}" for i in range(road)]
+    return written_task(tmp_path, GATE_DOMAIN, "gate-trap", f"gate-{cells}", objects, facts, "(done)")
 
 
 def helpful_only_search_solves(task: Task) -> bool:

@@ -92,3 +92,47 @@ def test_helpful_actions_can_lead_into_a_dead_end() -> None:
     assert [str(a) for i, a in enumerate(task.actions) if helpful >> i & 1] == ["commit"]
     committed = next(a for a in task.actions if a.name == "commit").apply(task.initial_state)
     assert exploration.h_ff(committed) == INFINITY
+
+
+def reference_h_add(task: Task, state: int) -> list[float]:
+    """h_add of every atom by fixpoint iteration: 0 in ``state``, else min over achievers of 1 + sum."""
+    cost = [0.0 if state >> atom & 1 else INFINITY for atom in range(len(task.atoms))]
+    changed = True
+    while changed:
+        changed = False
+        for action in task.actions:
+            offer = 1 + sum(cost[p] for p in action.pre_ids)
+            for atom in action.add_ids:
+                if offer < cost[atom]:
+                    cost[atom], changed = offer, True
+    return cost
+
+
+def test_additive_costs_and_supporters_match_a_fixpoint_reference(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task, "hadd")
+    for state in reachable_states(small_task):
+        reference = reference_h_add(small_task, state)
+        goal_costs = [reference[g] for g in exploration.goal_ids]
+        explored = exploration.additive_costs(state)
+        if INFINITY in goal_costs:
+            assert explored is None
+            continue
+        assert explored is not None
+        cost, supporter = explored
+        assert exploration.h_add(state) == sum(goal_costs)
+        # Every atom it settled (only relevant actions take part) cheaper than the dearest
+        # goal atom has its h_add cost, and its supporter achieves it at exactly that cost.
+        for atom, expected in enumerate(reference):
+            if cost[atom] < INFINITY and expected < max(goal_costs, default=0.0):
+                assert cost[atom] == expected
+                if expected > 0:
+                    action = small_task.actions[supporter[atom]]
+                    assert atom in action.add_ids
+                    assert 1 + sum(reference[p] for p in action.pre_ids) == expected
+
+
+def test_additive_costs_repeat_with_a_larger_weight_when_costs_come_near_it(small_task: Task) -> None:
+    exploration = RelaxedExploration(small_task, "hadd")
+    for state in reachable_states(small_task):
+        # A weight of 2 is below most sums of costs: the exploration must notice and redo.
+        assert exploration.additive_costs(state, unsettled=2) == exploration.additive_costs(state)

@@ -49,9 +49,25 @@ def test_the_straight_line_through_the_disc_is_bent_around_it() -> None:
     assert np.allclose(solution.path[0], start) and np.allclose(solution.path[-1], goal)
     assert check_path_densely(solution.path, DISC, 1e-3).collision_free
     attempts = solution.figures["attempts"]
-    assert isinstance(attempts, list) and attempts[0]["initial_guess"] == "straight line"
+    # the straight line collides, so the optimiser starts from the RRT-Connect path
+    assert isinstance(attempts, list) and str(attempts[0]["initial_guess"]).startswith("rrt_connect seed")
+    assert attempts[0]["clearance"] == "drake"
     assert solution.figures["length_ratio_to_rrt_connect"] is not None
     assert solution.figures["waypoints"] == DEFAULT_SETTINGS.num_waypoints
+
+
+def test_a_free_straight_line_is_the_initial_guess_and_the_answer() -> None:
+    start, goal = np.array([0.1, 0.1]), np.array([0.9, 0.2])
+    checker = model()
+    solution = OptimizingMotionBackend().solve(start, goal, checker, checker, np.random.default_rng(0))
+    assert solution.solved and solution.path is not None
+    attempts = solution.figures["attempts"]
+    assert isinstance(attempts, list) and attempts[0]["initial_guess"] == "straight line"
+    expected = np.linspace(start, goal, DEFAULT_SETTINGS.num_waypoints)
+    np.testing.assert_allclose(solution.path, expected, atol=1e-6)
+    # nothing to warm-start from is needed: no RRT-Connect reference was planned
+    assert solution.figures["rrt_connect_planned"] is False
+    assert solution.figures["length_ratio_to_rrt_connect"] is None
 
 
 def test_same_rng_gives_the_same_trajectory() -> None:

@@ -10,7 +10,6 @@ operator name.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import TypeVar
 
@@ -49,7 +48,7 @@ def relational_plan_generator(
     def generate(initial: State, rng: np.random.Generator) -> Iterator[AbstractPlan[State, GroundAction]]:
         search_task = task
         if initial != task.initial_state:
-            search_task = dataclasses.replace(task, initial_state=initial)
+            search_task = task.starting_from(initial)
         for actions in iter_plans(search_task, rng=rng, max_length=max_length):
             states = [initial]
             for action in actions:

@@ -11,7 +11,7 @@ refines the remaining actions from there.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from kitchen_tamp.execute.physics_plan import PlannedOutcome, planned_outcomes
 from kitchen_tamp.kitchen import RESTING_GAP, KitchenScene, build_kitchen_for_task
@@ -59,7 +59,7 @@ def observed_kitchen(task: Task, simulated: KitchenScene) -> KitchenScene:
 def replan_rest(task: Task, state: State, simulated: KitchenScene, replan: Replanner) -> Replan | None:
     """The remaining actions from ``state`` refined again from the simulated scene, with the
     poses they plan for, or None if the replanner found none."""
-    rest_task = replace(task, initial_state=state)
+    rest_task = task.starting_from(state)
     with observed_kitchen(task, simulated) as observed:
         start = observed.scene.save_state()
         trajectory = replan(observed, rest_task)

@@ -19,7 +19,7 @@ from pydrake.solvers import (
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.trajectory_program import (
-    SignedDistanceFunction,
+    Clearance,
     TrajectoryOptimizationSettings,
     TrajectoryProgram,
     build_trajectory_program,
@@ -60,8 +60,8 @@ class TrajectoryOptimizationResult:
     """Optimised waypoints (N, d) and how the solver got there.
 
     `iterations` is None when the solver does not report it (Drake exposes
-    neither SNOPT's nor IPOPT's count); `collision_evaluations` counts calls
-    of the signed-distance constraint instead.
+    neither SNOPT's nor IPOPT's count); `collision_evaluations` counts the
+    configurations whose clearance the solver asked for instead.
     """
 
     success: bool
@@ -96,7 +96,7 @@ def reconstruct_trajectory(
         iterations=None,
         cost=float(result.get_optimal_cost()),
         solve_time_s=solve_time_s,
-        collision_evaluations=problem.collision_constraint.evaluations,
+        collision_evaluations=problem.collision_evaluations,
     )
 
 
@@ -104,15 +104,17 @@ def optimize_trajectory(
     start: npt.ArrayLike,
     goal: npt.ArrayLike,
     space: ConfigurationSpace,
-    signed_distance: SignedDistanceFunction,
+    clearance: Clearance,
     settings: TrajectoryOptimizationSettings | None = None,
     initial_path: JointPath | None = None,
 ) -> TrajectoryOptimizationResult:
-    """Build, solve and reconstruct. A start or goal in collision fails unsolved."""
+    """Build, solve and reconstruct. A start or goal in collision (negative clearance) fails
+    unsolved."""
     settings = settings or TrajectoryOptimizationSettings()
-    problem = build_trajectory_program(start, goal, space, signed_distance, settings, initial_path)
-    for name, q in (("start", problem.initial_guess[0]), ("goal", problem.initial_guess[-1])):
-        if signed_distance(q)[0] < 0.0:
+    problem = build_trajectory_program(start, goal, space, clearance, settings, initial_path)
+    ends, _ = clearance(problem.initial_guess[[0, -1]])
+    for name, value in zip(("start", "goal"), ends, strict=True):
+        if value < 0.0:
             return TrajectoryOptimizationResult(
                 success=False,
                 waypoints=problem.initial_guess,
@@ -121,7 +123,7 @@ def optimize_trajectory(
                 iterations=None,
                 cost=float("nan"),
                 solve_time_s=0.0,
-                collision_evaluations=problem.collision_constraint.evaluations,
+                collision_evaluations=problem.collision_evaluations,
             )
     clock_start = time.perf_counter()
     result = solve_trajectory_program(problem)

@@ -328,7 +328,7 @@ def ground(lifted: LiftedTask) -> Task:
                 rows, pre_masks, neg_masks, add_masks, delete_masks, _sorted_ids(pre, len(rows)),
                 _sorted_ids(add, len(rows)), strict=True):
             if not pre_mask & neg_mask:  # else a contradictory precondition: never applicable
-                actions.append(GroundAction.unchecked(name, args, pre_mask, neg_mask, add_mask, delete_mask,
+                actions.append(GroundAction(name, args, pre_mask, neg_mask, add_mask, delete_mask,
                                                       pre_ids, add_ids))
 
     unreachable = {a for a in lifted.goal if (a not in ids if a[0] in fluent else a not in lifted.init)}

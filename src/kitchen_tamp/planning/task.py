@@ -8,8 +8,11 @@ the measured difference against frozensets of strings.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from kitchen_tamp.planning.frozen_record import FrozenRecord
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:  # the planner's start-up path does not pay for collections.abc
+    from collections.abc import Iterable, Iterator, Mapping, Sequence
 
 Atom = tuple[str, ...]
 """A ground atom as (predicate, arg, ...), e.g. ``("boxOn", "sugar", "stove")``."""
@@ -39,13 +42,19 @@ def mask_of(ids: Iterable[int]) -> int:
     return mask
 
 
-@dataclass(frozen=True)
-class GroundAction:
-    """One grounded operator with unit cost.
+_ACTION_FIELDS = ("name", "args", "pre", "pre_neg", "add", "delete", "pre_ids", "add_ids")
+
+
+class GroundAction(FrozenRecord):
+    """One grounded operator with unit cost (an immutable record).
 
     ``pre``/``pre_neg`` are the atoms that must hold / must not hold, ``add`` and
     ``delete`` its effects, all as bitsets over the task's atom ids. The id tuples
     are the same sets, kept for heuristics that loop over single atoms.
+
+    Not a dataclass: ``dataclasses`` loads ``inspect``, a fifth of a small planner
+    run (``kitchen_tamp.planning.frozen_record``). The fields live in the instance
+    dictionary, filled in one call: grounding and the task cache build thousands.
     """
 
     name: str
@@ -54,22 +63,16 @@ class GroundAction:
     pre_neg: int
     add: int
     delete: int
-    pre_ids: tuple[int, ...] = field(compare=False)
-    add_ids: tuple[int, ...] = field(compare=False)
+    pre_ids: tuple[int, ...]
+    add_ids: tuple[int, ...]
 
-    @classmethod
-    def unchecked(cls, name: str, args: tuple[str, ...], pre: int, pre_neg: int, add: int, delete: int,
-                  pre_ids: tuple[int, ...], add_ids: tuple[int, ...]) -> GroundAction:
-        """The same action as the constructor builds, in half the time.
+    def __init__(self, name: str, args: tuple[str, ...], pre: int, pre_neg: int, add: int, delete: int,
+                 pre_ids: tuple[int, ...], add_ids: tuple[int, ...]) -> None:
+        self.__dict__.update(name=name, args=args, pre=pre, pre_neg=pre_neg, add=add, delete=delete,
+                             pre_ids=pre_ids, add_ids=add_ids)
 
-        A frozen dataclass's ``__init__`` sets each field through
-        ``object.__setattr__``; grounding builds thousands of actions, so it
-        fills the instance dictionary in one call instead.
-        """
-        action = object.__new__(cls)
-        action.__dict__.update(name=name, args=args, pre=pre, pre_neg=pre_neg, add=add, delete=delete,
-                               pre_ids=pre_ids, add_ids=add_ids)
-        return action
+    def _field_names(self) -> tuple[str, ...]:
+        return _ACTION_FIELDS
 
     def __str__(self) -> str:
         return " ".join((self.name, *self.args))
@@ -99,13 +102,17 @@ actions without positive preconditions. A child is ``(state & keep) | add``.
 """
 
 
-@dataclass(frozen=True)
-class Task:
-    """A grounded planning task.
+_TASK_FIELDS = ("name", "domain_name", "objects", "init_atoms", "goal_atoms", "negative_goal_atoms", "atoms",
+                "initial_state", "goal", "goal_neg", "actions", "unreachable_goal_atoms")
+
+
+class Task(FrozenRecord):
+    """A grounded planning task (an immutable record, like ``GroundAction``).
 
     ``init_atoms`` is the problem's ``:init`` exactly as written (static atoms
     included); ``atoms`` holds only the fluent atoms that are relaxed-reachable,
-    which are the ones states are made of.
+    which are the ones states are made of. Tables derived from the task are
+    cached in its instance dictionary beside the fields.
     """
 
     name: str
@@ -119,7 +126,25 @@ class Task:
     goal: int
     goal_neg: int
     actions: tuple[GroundAction, ...]
-    unreachable_goal_atoms: frozenset[Atom] = frozenset()
+    unreachable_goal_atoms: frozenset[Atom]
+
+    def __init__(self, name: str, domain_name: str, objects: Mapping[str, str], init_atoms: frozenset[Atom],
+                 goal_atoms: frozenset[Atom], negative_goal_atoms: frozenset[Atom], atoms: tuple[Atom, ...],
+                 initial_state: State, goal: int, goal_neg: int, actions: tuple[GroundAction, ...],
+                 unreachable_goal_atoms: frozenset[Atom] = frozenset()) -> None:
+        self.__dict__.update(name=name, domain_name=domain_name, objects=objects, init_atoms=init_atoms,
+                             goal_atoms=goal_atoms, negative_goal_atoms=negative_goal_atoms, atoms=atoms,
+                             initial_state=initial_state, goal=goal, goal_neg=goal_neg, actions=actions,
+                             unreachable_goal_atoms=unreachable_goal_atoms)
+
+    def _field_names(self) -> tuple[str, ...]:
+        return _TASK_FIELDS
+
+    def starting_from(self, state: State) -> Task:
+        """The same task from another initial state (derived tables are rebuilt when asked for)."""
+        return Task(self.name, self.domain_name, self.objects, self.init_atoms, self.goal_atoms,
+                    self.negative_goal_atoms, self.atoms, state, self.goal, self.goal_neg, self.actions,
+                    self.unreachable_goal_atoms)
 
     @property
     def atom_ids(self) -> Mapping[Atom, int]:

@@ -153,7 +153,7 @@ def decode_task(fields: tuple[Any, ...]) -> Task:
         goal_atoms=goal_atoms, negative_goal_atoms=negative_goal_atoms,
         atoms=atoms, initial_state=mask(initial_state),
         goal=mask(goal), goal_neg=mask(goal_neg),
-        actions=tuple(GroundAction.unchecked(action_name, args, mask(pre_ids), mask(pre_neg), mask(add_ids),
+        actions=tuple(GroundAction(action_name, args, mask(pre_ids), mask(pre_neg), mask(add_ids),
                                              mask(delete), pre_ids, add_ids)
                       for action_name, args, pre_ids, pre_neg, add_ids, delete in actions),
         unreachable_goal_atoms=unreachable)

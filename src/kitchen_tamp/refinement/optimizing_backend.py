@@ -2,34 +2,41 @@
 
 Each free-space move is solved by the Drake program of
 ``kitchen_tamp.motion.trajectory_program``: N joint waypoints, shortest squared
-path, start/goal equalities, joint limits, a bound on each step and a minimum
-signed distance (from Drake's collision model of the same scene) at every
-interior waypoint and between waypoints. Attempts, in order, until one both
-solves and passes the dense PyBullet re-check:
+path, start/goal equalities, joint limits, a bound on each step and a clearance
+of at least the margin at every interior waypoint and at points between
+waypoints. An RRT-Connect + shortcut path for the same move is planned first
+(with a seed drawn from the step's RNG; its length is also the yardstick the
+report compares against). The initial guess is the straight line in joint space
+when the planning checker finds it free, else that path. Attempts, in order,
+until one both solves and passes the dense PyBullet re-check:
 
-1. from the straight line in joint space;
-2. warm-started from an RRT-Connect + shortcut path for the same move (planned
-   first, with a seed drawn from the step's RNG; its length is also the yardstick
-   the report compares against);
-3. the same warm start with twice the waypoints and more checks between them.
+1. the sphere model's smooth clearance (`sphere_clearance`: every sphere pair,
+   compiled, a few microseconds per configuration), when the planning checker
+   has a sphere model;
+2. the same with twice the waypoints and more points between them, from the
+   RRT-Connect path;
+3. Drake's exact signed distance (the minimum over pairs of the same scene's
+   convex hulls), from the same initial guess.
 
-If none verifies the move fails; nothing falls back silently to the sampled path.
+Without a sphere model (``--collision-model drake``): Drake's signed distance,
+then twice the waypoints from the RRT-Connect path. If none verifies the move
+fails; nothing falls back silently to the sampled path.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 import numpy as np
+import numpy.typing as npt
 
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import ConfigurationSpace, InvalidMotionQueryError, check_path_densely, path_length
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.trajectory_program import TrajectoryOptimizationSettings
+from kitchen_tamp.motion.trajectory_program import Clearance, TrajectoryOptimizationSettings, one_at_a_time
 from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     BoundedCollisionChecker,
@@ -39,17 +46,26 @@ from kitchen_tamp.refinement.motion_backend import (
 )
 
 DEFAULT_SETTINGS = TrajectoryOptimizationSettings(
-    num_waypoints=50,
-    max_step=0.1,
+    num_waypoints=20,
+    max_step=0.25,
     collision_margin=0.005,
-    max_iterations=1000,
-    optimality_tolerance=1e-3,
+    max_iterations=200,
+    optimality_tolerance=1e-2,
     feasibility_tolerance=1e-5,
-    samples_between_waypoints=1,
+    samples_between_waypoints=4,
 )
-"""50 waypoints as in the original project; 5 mm of clearance at every waypoint and midway.
-An optimality tolerance of 1e-3 (SNOPT's default is 1e-6) halved the solve time on the
-kitchen's moves with path lengths within 0.1% (measured on problem.pddl, seed 0)."""
+"""20 waypoints (more when a joint must travel further than 0.25 rad a step), and 5 mm of clearance
+at every waypoint and at four points between each two: the collision points are as dense as with
+the original project's 50 waypoints and one midpoint. SNOPT's time grows much faster than the
+waypoint count (its quasi-Newton Hessian learns the path's curvature one waypoint joint at a
+time), and an optimality tolerance of 1e-2 (SNOPT's default is 1e-6) stops it once the path is
+within a fraction of a percent of its best length: on the hard moves of problem.pddl and
+problem_hard.pddl (seed 0), 0.11-0.15 CPU s per move instead of 0.3-3.3 s with 50 waypoints
+and 1e-3, with paths 0.1-0.9% longer. At most 200 major iterations."""
+
+
+Attempt = tuple[bool, TrajectoryOptimizationSettings, str]
+"""One attempt of a move: (starts from the reference path, settings, clearance model)."""
 
 
 class SignedDistanceModel(BoundedCollisionChecker, Protocol):
@@ -87,48 +103,97 @@ class OptimizingMotionBackend:
         if signed_distance is None:
             raise ValueError("trajectory optimisation needs a collision model with signed distances (drake)")
         clock = time.perf_counter()
-        reference = self.reference.solve(start, goal, checker, strict_checker, rng)
+        reference: MotionSolution | None = None
+
+        def planned_reference() -> MotionSolution:
+            nonlocal reference
+            if reference is None:
+                reference = self.reference.solve(start, goal, checker, strict_checker, rng)
+            return reference
+
         space = ConfigurationSpace(checker.lower, checker.upper)
         attempts: list[dict[str, Figure]] = []
         optimisation_s = 0.0
-        plans: list[tuple[str, JointPath | None, TrajectoryOptimizationSettings]] = [
-            ("straight line", None, self.settings)
-        ]
-        if reference.path is not None:
-            seed = reference.figures.get("planner_seed")
-            plans.append((f"rrt_connect seed {seed}", reference.path, self.settings))
-            denser = replace(
-                self.settings,
-                num_waypoints=2 * self.settings.num_waypoints,
-                samples_between_waypoints=self.settings.samples_between_waypoints + 1,
-            )
-            described = f"rrt_connect seed {seed}, {denser.num_waypoints} waypoints"
-            plans.append((described, reference.path, denser))
-        for number, (initial, guide, settings) in enumerate(plans, start=1):
-            attempt, waypoints, seconds = self._attempt(start, goal, space, signed_distance, settings, guide)
+        clearances = {"drake": one_at_a_time(signed_distance)}
+        spheres = _sphere_clearance(checker, self.settings.collision_margin, np.stack([start, goal]))
+        if spheres is not None:
+            clearances["spheres"] = spheres
+        straight_free = bool(checker.segment_valid(start, goal))
+        for from_reference, settings, model in self._plans(straight_free, spheres is not None):
+            if from_reference and planned_reference().path is None and attempts:
+                continue  # no path to warm-start from, and the straight line was tried
+            initial, guide = "straight line", None
+            if from_reference and (path := planned_reference().path) is not None:
+                seed = planned_reference().figures.get("planner_seed")
+                initial, guide = f"rrt_connect seed {seed}", path
+            if settings.num_waypoints != self.settings.num_waypoints:
+                initial += f", {settings.num_waypoints} waypoints"
+            clearance = clearances[model]
+            attempt, waypoints, seconds = self._attempt(start, goal, space, clearance, settings, guide)
             optimisation_s += seconds
-            attempt = {"attempt": number, "initial_guess": initial, **attempt}
+            number = len(attempts) + 1
+            attempt = {"attempt": number, "initial_guess": initial, "clearance": model, **attempt}
             if waypoints is not None:
                 dense = check_path_densely(waypoints, strict_checker, self.dense_resolution)
                 attempt["dense_check"] = "free" if dense.collision_free else "collides between waypoints"
             attempts.append(attempt)
             if waypoints is not None and attempt["dense_check"] == "free":
                 figures = self._figures(waypoints, reference, attempts, settings)
-                timings = {"optimization_s": optimisation_s, "reference_rrt_s": reference.seconds}
                 return MotionSolution(
-                    waypoints, "solved", number, figures, time.perf_counter() - clock, timings
+                    waypoints,
+                    "solved",
+                    number,
+                    figures,
+                    time.perf_counter() - clock,
+                    self._timings(optimisation_s, reference),
                 )
         figures = self._figures(None, reference, attempts, self.settings)
         status = str(attempts[-1].get("status", "not attempted")) if attempts else "not attempted"
-        timings = {"optimization_s": optimisation_s, "reference_rrt_s": reference.seconds}
-        return MotionSolution(None, status, len(attempts), figures, time.perf_counter() - clock, timings)
+        return MotionSolution(
+            None,
+            status,
+            len(attempts),
+            figures,
+            time.perf_counter() - clock,
+            self._timings(optimisation_s, reference),
+        )
+
+    def _plans(self, straight_free: bool, spheres: bool) -> list[Attempt]:
+        """The attempts in order: (whether it starts from the reference path, settings, clearance
+        model). The first starts from the straight line when the planning checker finds it free,
+        else from the reference path: optimising through an obstacle is where SNOPT spent tens of
+        thousands of distance queries, and a free straight line needs no reference at all. With a
+        sphere model: its clearance, then its clearance with twice the waypoints from the
+        reference path (for a path that grazed between waypoints), then Drake's exact signed
+        distance (where the spheres' overshoot closes a passage). Without: Drake's, then twice the
+        waypoints."""
+        denser = replace(
+            self.settings,
+            num_waypoints=2 * self.settings.num_waypoints,
+            samples_between_waypoints=self.settings.samples_between_waypoints + 1,
+        )
+        first = not straight_free
+        if spheres:
+            return [
+                (first, self.settings, "spheres"),
+                (True, denser, "spheres"),
+                (first, self.settings, "drake"),
+            ]
+        return [(first, self.settings, "drake"), (True, denser, "drake")]
+
+    @staticmethod
+    def _timings(optimisation_s: float, reference: MotionSolution | None) -> dict[str, float]:
+        return {
+            "optimization_s": optimisation_s,
+            "reference_rrt_s": 0.0 if reference is None else reference.seconds,
+        }
 
     def _attempt(
         self,
         start: JointConfiguration,
         goal: JointConfiguration,
         space: ConfigurationSpace,
-        signed_distance: Callable[[JointConfiguration], tuple[float, JointConfiguration]],
+        clearance: Clearance,
         settings: TrajectoryOptimizationSettings,
         guide: JointPath | None,
     ) -> tuple[dict[str, Figure], JointPath | None, float]:
@@ -137,7 +202,7 @@ class OptimizingMotionBackend:
         if needed > settings.num_waypoints:
             settings = replace(settings, num_waypoints=needed)
         try:
-            result = optimize_trajectory(start, goal, space, signed_distance, settings, initial_path=guide)
+            result = optimize_trajectory(start, goal, space, clearance, settings, initial_path=guide)
         except InvalidMotionQueryError as error:
             return {"status": str(error)}, None, 0.0
         figures: dict[str, Figure] = {
@@ -152,11 +217,14 @@ class OptimizingMotionBackend:
     def _figures(
         self,
         path: JointPath | None,
-        reference: MotionSolution,
+        reference: MotionSolution | None,
         attempts: list[dict[str, Figure]],
         settings: TrajectoryOptimizationSettings,
     ) -> dict[str, Figure]:
-        rrt_length = reference.figures.get("path_length_rad") if reference.path is not None else None
+        """The move's report figures; the RRT-Connect comparison only when the reference was planned
+        (not when the free straight line was the answer)."""
+        planned = reference is not None and reference.path is not None
+        rrt_length = reference.figures.get("path_length_rad") if planned and reference else None
         length = round(path_length(path), 9) if path is not None else None
         ratio = (
             round(length / float(rrt_length), 6)
@@ -169,7 +237,21 @@ class OptimizingMotionBackend:
             "attempts": attempts,  # type: ignore[dict-item]
             "waypoints": None if path is None else len(path),
             "path_length_rad": length,
+            "rrt_connect_planned": reference is not None,
             "rrt_connect_path_length_rad": rrt_length,
             "length_ratio_to_rrt_connect": ratio,
-            "rrt_connect_seed": reference.figures.get("planner_seed"),
+            "rrt_connect_seed": None if reference is None else reference.figures.get("planner_seed"),
         }
+
+def _sphere_clearance(
+    checker: BoundedCollisionChecker, margin: float, ends: npt.NDArray[np.float64]
+) -> Clearance | None:
+    """The smooth clearance of the checker's sphere model (a `SphereScreenedChecker`'s
+    ``spheres``) for a move between ``ends``, or None when it plans without one."""
+    model = getattr(getattr(checker, "spheres", None), "model", None)
+    if model is None:
+        return None
+    # imported here: numba loads only when the sphere model is used
+    from kitchen_tamp.motion.sphere_clearance import SphereClearance
+
+    return SphereClearance(model, margin, ends=ends)

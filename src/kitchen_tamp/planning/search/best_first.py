@@ -6,9 +6,10 @@ first-in first-out, so runs are deterministic.
 
 GBFS with h_FF also uses the helpful actions (preferred operators) of each
 state by default: ``alternating_greedy`` keeps the children they reach in a
-second queue that takes turns with the queue of all children, boosted while
-it makes progress, as Fast Downward does (eager, or lazy with
-``lazy=True``). ``preferred_operators=False`` is the plain search here.
+second queue, and the children that make an atom true for the first time in a
+third, which take turns with the queue of all children, boosted while the
+search makes progress, as Fast Downward does (lazy by default, eager with
+``lazy=False``). ``preferred_operators=False`` is the plain search here.
 """
 
 from __future__ import annotations
@@ -32,14 +33,14 @@ Entry = tuple[float, float, int, int, State]
 
 def greedy_best_first_search(
     task: Task, *, heuristic: HeuristicName = "hff", preferred_operators: bool = True,
-    lazy: bool = False, time_budget: float | None = None, max_expansions: int | None = None,
+    lazy: bool = True, time_budget: float | None = None, max_expansions: int | None = None,
 ) -> SearchResult:
     """Expand the state with the lowest h first; fast, plans not necessarily shortest.
 
-    ``preferred_operators`` (h_FF only): a second queue of the children reached
-    by helpful actions takes turns with the queue of all children, boosted on
-    progress; ``lazy``: with it, children are evaluated when taken out of a
-    queue, not when generated (see ``alternating_greedy``).
+    ``preferred_operators`` (h_FF only): a queue of the children reached by
+    helpful actions and one of the novel children take turns with the queue of
+    all children, boosted on progress; ``lazy``: children are evaluated when
+    taken out of a queue, not when generated (see ``alternating_greedy``).
     """
     if heuristic == "hff" and preferred_operators:
         return alternating_greedy_search(task, SearchBudget(time_budget, max_expansions), lazy=lazy)

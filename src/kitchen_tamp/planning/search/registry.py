@@ -46,7 +46,7 @@ SEARCHES: dict[str, Search] = {
 SEARCH_DESCRIPTIONS: dict[str, str] = {
     "bfs": "breadth-first search (optimal)",
     "ehc": "enforced hill climbing with h_FF, helpful actions first",
-    "gbfs": "greedy best-first search with h_FF, preferred and all successors in turn",
+    "gbfs": "greedy best-first search with h_FF, lazy; all, preferred and novel successors in turn",
     "astar": "A* with h_max (optimal)",
 }
 
