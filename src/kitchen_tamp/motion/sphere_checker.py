@@ -27,7 +27,7 @@ from kitchen_tamp.motion.drake_collision import DEFAULT_DISTANCE_HORIZON, Descri
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 from kitchen_tamp.motion.sphere_covering import DEFAULT_COVERING_TOLERANCE
 from kitchen_tamp.motion.sphere_distances import SpherePairs, pair_distances, pair_distances_and_gradients
-from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
+from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments, with_pair_tables
 from kitchen_tamp.motion.sphere_kernels import valid_configurations
 from kitchen_tamp.motion.sphere_pair_tables import pair_tables
 from kitchen_tamp.motion.sphere_reference import reference_validity
@@ -95,8 +95,7 @@ class SphereCollisionChecker:
         """The kernel's arguments, with tables proved at this checker's margin for the self pairs
         two joints place (`sphere_pair_tables`)."""
         plain = kernel_arguments(self.model, self.lower, self.upper)
-        tables = pair_tables(self.model, plain, self.margin)
-        return kernel_arguments(self.model, self.lower, self.upper, tables)
+        return with_pair_tables(plain, pair_tables(self.model, plain, self.margin))
 
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""

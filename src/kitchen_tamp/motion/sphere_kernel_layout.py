@@ -82,12 +82,11 @@ class _Tree:
         return node
 
 
-def kernel_arguments(
-    scene: SphereScene, lower: FloatArray, upper: FloatArray, tables: PairTables | None = None
-) -> tuple[Any, ...]:
-    """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``; the checked
-    pairs are last (``group_box_pairs``, then ``group_pairs`` with each pair's table or -1)."""
-    tables = no_tables(len(scene.group_pairs)) if tables is None else tables
+def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
+    """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``, without pair
+    tables (`with_pair_tables` adds them); the checked pairs are last (``group_box_pairs``, then
+    ``group_pairs`` with each pair's table, here -1)."""
+    tables = no_tables(len(scene.group_pairs))
     layout = scene.tree.flat_layout()
     group_centers, group_radii = [], []
     for group in scene.groups:
@@ -142,3 +141,13 @@ def kernel_arguments(
         indices(_likely_first(scene, scene.group_box_pairs)).reshape(-1, 2),
         np.column_stack([indices(scene.group_pairs).reshape(-1, 2), tables.pair_tables]).astype(np.int64),
     )
+
+
+def with_pair_tables(arguments: tuple[Any, ...], tables: PairTables) -> tuple[Any, ...]:
+    """``arguments`` of `kernel_arguments` with ``tables`` in place of the tables they carry (the
+    trees are not built again)."""
+    table_arguments = tables.kernel_arguments()
+    *laid_out, group_box_pairs, group_pairs = arguments
+    geometry = laid_out[: len(laid_out) - len(table_arguments)]
+    named = np.column_stack([group_pairs[:, :2], tables.pair_tables]).astype(np.int64)
+    return (*geometry, *table_arguments, group_box_pairs, named)
