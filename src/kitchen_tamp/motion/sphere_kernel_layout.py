@@ -11,13 +11,14 @@ obstacle proves its spheres clear.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.sphere_pair_tables import PairTables, no_tables
-from kitchen_tamp.motion.sphere_scene import SphereScene
+from kitchen_tamp.motion.sphere_scene import SphereGroup, SphereScene
 
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
@@ -81,6 +82,32 @@ class _Tree:
         self.last[node] = self.stored
         return node
 
+    def graft(self, grown: _Tree, group: SphereGroup) -> int:
+        """Add ``grown`` (one group's tree over its own spheres) for ``group``; its root node."""
+        root, offset = len(self.radii), group.fine_spheres.start
+        self.links.extend([group.robot_link] * len(grown.radii))
+        self.centers.extend(grown.centers)
+        self.radii.extend(grown.radii)
+        self.children.extend([[c + root if c >= 0 else -1 for c in pair] for pair in grown.children])
+        self.first.extend(f + self.stored for f in grown.first)
+        self.last.extend(last + self.stored for last in grown.last)
+        self.order.extend(members + offset for members in grown.order)
+        self.stored += grown.stored
+        return root
+
+
+def _group_tree(scene: SphereScene, spheres: slice) -> _Tree:
+    return _grown_tree(scene.fine_centers[spheres].tobytes(), scene.fine_radii[spheres].tobytes())
+
+
+@functools.lru_cache(maxsize=64)
+def _grown_tree(centers: bytes, radii: bytes) -> _Tree:
+    """The tree of one group's fine spheres (given as bytes), indices its own: grown once per
+    process for the same spheres (the robot's links are the same in every scene)."""
+    tree = _Tree(np.frombuffer(centers).reshape(-1, 3), np.frombuffer(radii))
+    tree.build(np.arange(len(tree.sphere_radii)), 0)
+    return tree
+
 
 def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
     """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``, without pair
@@ -94,10 +121,7 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
         group_centers.append(center)
         group_radii.append(radius)
     tree = _Tree(scene.fine_centers, scene.fine_radii)
-    roots = [
-        tree.build(np.arange(group.fine_spheres.start, group.fine_spheres.stop), group.robot_link)
-        for group in scene.groups
-    ]
+    roots = [tree.graft(_group_tree(scene, group.fine_spheres), group) for group in scene.groups]
     order = np.concatenate(tree.order) if tree.order else np.zeros(0, dtype=np.intp)
     boxes = scene.boxes
     reach = np.einsum("bij,bj->bi", np.abs(boxes.rotations), boxes.half_extents)
