@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from kitchen_tamp.motion.sphere_scene import sphere_cache_directory
 from tests.kitchen.conftest import REPO
 
 pytestmark = pytest.mark.slow
@@ -29,12 +30,22 @@ def _clean_environment(cache: Path) -> dict[str, str]:
     return env
 
 
+def _reuse_generated_spheres(cache: Path) -> None:
+    """Copy the sphere sets and pair tables this machine already generated into the fresh cache:
+    they are keyed by what they were generated from, so they are the ones the wheel would generate
+    again (a fresh machine spends a couple of minutes on them; the suite should pay that once)."""
+    spheres = sphere_cache_directory()
+    if spheres.is_dir():
+        shutil.copytree(spheres, cache / "kitchen_tamp" / "spheres")
+
+
 def test_wheel_installs_and_runs_from_an_empty_folder(tmp_path: Path) -> None:
     source = tmp_path / "source"  # built from a copy, so the build leaves nothing in the checkout
     shutil.copytree(REPO / "src", source / "src", ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
     for name in ("pyproject.toml", "README.md"):
         shutil.copy(REPO / name, source / name)
     env = _clean_environment(tmp_path / "cache")
+    _reuse_generated_spheres(tmp_path / "cache")
     wheels = tmp_path / "wheels"
     built = _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", str(source), "-w", str(wheels)],
                  tmp_path, env)
