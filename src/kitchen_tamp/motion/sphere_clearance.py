@@ -87,12 +87,7 @@ class SphereClearance:
         sphere_sizes = [sizes[g] * sizes[h] for g, h in group_pairs]
         sphere_offsets = _offsets(sphere_sizes) + sum(box_sizes)
         return (
-            layout.root,
-            layout.parents,
-            layout.origins @ layout.held,
-            layout.kinds,
-            layout.axes,
-            layout.variables,
+            *layout.kernel_arrays(),
             np.ascontiguousarray(model.tree.depends),
             model.sphere_links.astype(np.int64),
             model.sphere_centers,

@@ -132,12 +132,7 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
     return (
         lower,
         upper,
-        layout.root,
-        layout.parents,
-        layout.origins @ layout.held,
-        layout.kinds,
-        layout.axes,
-        layout.variables,
+        *layout.kernel_arrays(),
         indices([g.robot_link for g in scene.groups]),
         np.array(group_centers, dtype=float).reshape(-1, 3),
         np.array(group_radii, dtype=float),

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -62,6 +63,11 @@ class TreeLayout:
     axes: FloatArray
     variables: npt.NDArray[np.int64]
     held: FloatArray
+
+    def kernel_arrays(self) -> tuple[Any, ...]:
+        """Root, parents, origins with the held motions folded in, kinds, axes, variables: the
+        tree as the compiled kernels take it."""
+        return (self.root, self.parents, self.origins @ self.held, self.kinds, self.axes, self.variables)
 
 
 class KinematicTree:
