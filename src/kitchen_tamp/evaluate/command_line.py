@@ -61,7 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="problem files; bare names are also looked up in the shipped kitchens "
                              "(default: the default kitchen's problem*.pddl unless --random-problems "
                              "is given)")
-    parser.add_argument("--domain", type=Path, help="domain file (default: domain.pddl beside each problem, else the shipped one)")
+    parser.add_argument("--domain", type=Path,
+                        help="domain file (default: domain.pddl beside each problem, else the shipped one)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=["rrt"], help="default: rrt")
     parser.add_argument("--seeds", default="0-19", help="seeds, e.g. 0-99 or 0-4,10 (default 0-19)")
     parser.add_argument("--random-problems", type=int, default=0, metavar="N",
