@@ -140,3 +140,14 @@ def test_ray_local_gives_the_same_rows_apart_from_timing(real_sweep: Path, tmp_p
                  "--ray", "local", "--out", str(out)]) == 0
     [ray_row] = read_rows(out / "results.csv")
     assert _comparable(ray_row) == _comparable(_by_seed(real_sweep)["0"])
+
+
+def test_a_problem_of_another_kitchen_is_swept_with_the_domain_a_run_finds(tmp_path: Path) -> None:
+    """The galley ships no domain.pddl of its own: without --domain, the sweep checks its
+    problems against the shipped domain, as final_project.py does, instead of refusing them."""
+    galley = Path(__file__).resolve().parents[2] / "src" / "kitchen_tamp" / "kitchens" / "galley"
+    assert not (galley / "domain.pddl").exists()
+    out = tmp_path / "sweep"
+    assert main(["--problems", str(galley / "problem_swap.pddl"), "--seeds", "0", "--out", str(out),
+                 "--run-command", FAKE_COMMAND]) == 0
+    assert [row["status"] for row in read_rows(out / "results.csv")] == ["solved"]

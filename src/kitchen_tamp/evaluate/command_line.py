@@ -37,7 +37,7 @@ from kitchen_tamp.evaluate.results_table import RESULTS_FILE, ResultsTableError
 from kitchen_tamp.evaluate.summary import write_summary
 from kitchen_tamp.evaluate.sweep import RUNS_DIR, SweepPlan, run_sweep
 from kitchen_tamp.evaluate.task_run import RunSettings, default_run_command
-from kitchen_tamp.kitchens import default_domain_path, find_problem, kitchen_folder
+from kitchen_tamp.kitchens import default_domain_path, domain_for, find_problem, kitchen_folder
 from kitchen_tamp.planning import PlanningInputError, load_task
 
 DEFAULT_OUT = Path("out") / "evaluate"
@@ -61,7 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="problem files; bare names are also looked up in the shipped kitchens "
                              "(default: the default kitchen's problem*.pddl unless --random-problems "
                              "is given)")
-    parser.add_argument("--domain", type=Path, help="domain file (default: domain.pddl beside each problem)")
+    parser.add_argument("--domain", type=Path,
+                        help="domain file (default: domain.pddl beside each problem, else the shipped one)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=["rrt"], help="default: rrt")
     parser.add_argument("--seeds", default="0-19", help="seeds, e.g. 0-99 or 0-4,10 (default 0-19)")
     parser.add_argument("--random-problems", type=int, default=0, metavar="N",
@@ -98,7 +99,8 @@ def _problem_files(names: Sequence[str], domain: Path | None) -> list[Path]:
         path = find_problem(name)
         if not path.is_file():
             raise SweepUsageError(f"problem file not found: {name}")
-        load_task(path, domain)  # a malformed problem stops the sweep before it starts
+        # a malformed problem stops the sweep before it starts; its domain is found as a run finds it
+        load_task(path, domain if domain is not None else domain_for(path))
         problems.append(path.resolve())
     return problems
 
