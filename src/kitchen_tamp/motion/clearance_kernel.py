@@ -23,13 +23,13 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.sphere_kernels import (
+from kitchen_tamp.motion.sphere_primitives import (
     PRISMATIC,
     REVOLUTE,
-    _aabb_gap,
-    _distance,
-    _link_poses,
-    _world_point,
+    aabb_gap,
+    distance,
+    link_poses,
+    world_point,
 )
 
 FloatArray = npt.NDArray[np.float64]
@@ -128,19 +128,19 @@ def clearance_penalties(
     for p in range(floors.shape[0]):
         reach = max(reach, floors[p] + width)
     for m in range(count):
-        _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
+        link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
         placed[:] = False
         forces[:] = 0.0
         total = 0.0
         for g in range(group_radii.shape[0]):
-            _world_point(poses[group_links[g]], group_centers[g], group_world[g])
+            world_point(poses[group_links[g]], group_centers[g], group_world[g])
         for k in range(group_box_pairs.shape[0]):
             g, b = group_box_pairs[k, 0], group_box_pairs[k, 1]
-            if _aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= reach:
+            if aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= reach:
                 continue
             for s in range(group_starts[g], group_stops[g]):
                 if not placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
+                    world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
                     placed[s] = True
                 gap = _box_gap_direction(world[s], box_rotations[b], box_centers[b], box_halves[b], direction)
                 floor = floors[box_pair_offsets[k] + s - group_starts[g]]
@@ -152,21 +152,21 @@ def clearance_penalties(
                     forces[s, i] += slope / width * direction[i]
         for k in range(group_pairs.shape[0]):
             g, h = group_pairs[k, 0], group_pairs[k, 1]
-            if _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= reach:
+            if distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= reach:
                 continue
             size = group_stops[h] - group_starts[h]
             row = sphere_pair_offsets[k] - group_starts[h]
             for s in range(group_starts[g], group_stops[g]):
                 if not placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
+                    world_point(poses[sphere_links[s]], sphere_centers[s], world[s])
                     placed[s] = True
-                if _distance(world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= reach:
+                if distance(world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= reach:
                     continue
                 for t in range(group_starts[h], group_stops[h]):
                     if not placed[t]:
-                        _world_point(poses[sphere_links[t]], sphere_centers[t], world[t])
+                        world_point(poses[sphere_links[t]], sphere_centers[t], world[t])
                         placed[t] = True
-                    length = _distance(world[s], world[t])
+                    length = distance(world[s], world[t])
                     floor = floors[row + (s - group_starts[g]) * size + t]
                     gap = length - sphere_radii[s] - sphere_radii[t]
                     value, slope = _hinge((gap - floor - width) / width)

@@ -21,109 +21,16 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.sphere_primitives import (
+    aabb_gap,
+    apart,
+    box_gap,
+    distance,
+    link_poses,
+    world_point,
+)
+
 FloatArray = npt.NDArray[np.float64]
-
-FIXED, REVOLUTE, PRISMATIC = 0, 1, 2
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _compose(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
-    """out = a @ b for rigid 4x4 transforms (numba's @ needs BLAS from scipy)."""
-    for i in range(3):
-        for j in range(4):
-            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
-        out[i, 3] += a[i, 3]
-    out[3, 0] = out[3, 1] = out[3, 2] = 0.0
-    out[3, 3] = 1.0
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _link_poses(
-    q: FloatArray,
-    root: FloatArray,
-    parents: npt.NDArray[np.int64],
-    origins: FloatArray,
-    kinds: npt.NDArray[np.int64],
-    axes: FloatArray,
-    variables: npt.NDArray[np.int64],
-    poses: FloatArray,
-    motion: FloatArray,
-    frame: FloatArray,
-) -> None:
-    for link in range(parents.shape[0]):
-        if parents[link] < 0:
-            poses[link] = root
-            continue
-        kind = kinds[link]
-        if kind == FIXED:
-            _compose(poses[parents[link]], origins[link], poses[link])
-            continue
-        _compose(poses[parents[link]], origins[link], frame)
-        angle = q[variables[link]]
-        x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
-        motion[:] = 0.0
-        motion[3, 3] = 1.0
-        if kind == REVOLUTE:
-            c, s = np.cos(angle), np.sin(angle)
-            t = 1.0 - c
-            motion[0, 0], motion[0, 1], motion[0, 2] = t * x * x + c, t * x * y - s * z, t * x * z + s * y
-            motion[1, 0], motion[1, 1], motion[1, 2] = t * x * y + s * z, t * y * y + c, t * y * z - s * x
-            motion[2, 0], motion[2, 1], motion[2, 2] = t * x * z - s * y, t * y * z + s * x, t * z * z + c
-        else:
-            motion[0, 0] = motion[1, 1] = motion[2, 2] = 1.0
-            motion[0, 3], motion[1, 3], motion[2, 3] = angle * x, angle * y, angle * z
-        _compose(frame, motion, poses[link])
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _box_gap(point: FloatArray, rotation: FloatArray, center: FloatArray, half: FloatArray) -> float:
-    """Signed distance from a point to an oriented box (negative inside)."""
-    outside = 0.0
-    deepest = -1e300
-    for axis in range(3):
-        local = 0.0
-        for k in range(3):
-            local += rotation[k, axis] * (point[k] - center[k])
-        excess = abs(local) - half[axis]
-        if excess > 0.0:
-            outside += excess * excess
-        if excess > deepest:
-            deepest = excess
-    if outside > 0.0:
-        return float(np.sqrt(outside))
-    return float(deepest)
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _aabb_gap(point: FloatArray, low: FloatArray, high: FloatArray) -> float:
-    """Distance from a point to an axis-aligned box (zero inside): a lower bound of the gap to any
-    shape inside the box."""
-    total = 0.0
-    for k in range(3):
-        excess = max(low[k] - point[k], point[k] - high[k], 0.0)
-        total += excess * excess
-    return float(np.sqrt(total))
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _distance(a: FloatArray, b: FloatArray) -> float:
-    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
-    return float(np.sqrt(dx * dx + dy * dy + dz * dz))
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _apart(a: FloatArray, b: FloatArray, reach: float) -> bool:
-    """Whether the points are at least ``reach`` apart (squared distances: no root)."""
-    if reach <= 0.0:
-        return True
-    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
-    return bool(dx * dx + dy * dy + dz * dz >= reach * reach)
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def _world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
-    for k in range(3):
-        out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
 
 
 STACK_DEPTH = 256
@@ -141,7 +48,7 @@ def _place(
 ) -> None:
     """World position of a sphere or bound, computed once per configuration."""
     if not placed[index]:
-        _world_point(poses[links[index]], local[index], world[index])
+        world_point(poses[links[index]], local[index], world[index])
         placed[index] = True
 
 
@@ -177,13 +84,13 @@ def _tree_hits_box(
         n = stack[top]
         top -= 1
         _place(n, poses, node_links, node_centers, node_world, node_placed)
-        if _box_gap(node_world[n], box_rotations[b], box_centers[b], box_halves[b]) - node_radii[n] >= margin:
+        if box_gap(node_world[n], box_rotations[b], box_centers[b], box_halves[b]) - node_radii[n] >= margin:
             continue
         if node_children[n, 0] < 0:
             for s in range(node_first[n], node_last[n]):
                 _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
                 if (
-                    _box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
+                    box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
                     - sphere_radii[s]
                     < margin
                 ):
@@ -225,17 +132,17 @@ def _trees_touch(
         top -= 1
         _place(a, poses, node_links, node_centers, node_world, node_placed)
         _place(b, poses, node_links, node_centers, node_world, node_placed)
-        if _apart(node_world[a], node_world[b], node_radii[a] + node_radii[b] + margin):
+        if apart(node_world[a], node_world[b], node_radii[a] + node_radii[b] + margin):
             continue
         leaf_a, leaf_b = node_children[a, 0] < 0, node_children[b, 0] < 0
         if leaf_a and leaf_b:
             for s in range(node_first[a], node_last[a]):
                 _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
-                if _apart(sphere_world[s], node_world[b], sphere_radii[s] + node_radii[b] + margin):
+                if apart(sphere_world[s], node_world[b], sphere_radii[s] + node_radii[b] + margin):
                     continue
                 for t in range(node_first[b], node_last[b]):
                     _place(t, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
-                    if not _apart(
+                    if not apart(
                         sphere_world[s], sphere_world[t], sphere_radii[s] + sphere_radii[t] + margin
                     ):
                         return True
@@ -364,28 +271,28 @@ def valid_configurations(
                     break
         if not valid[m]:
             continue
-        _link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
+        link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
         sphere_placed[:] = False
         fine_placed[:] = False
         node_placed[:] = False
         for g in range(group_radii.shape[0]):
-            _world_point(poses[group_links[g]], group_centers[g], group_world[g])
+            world_point(poses[group_links[g]], group_centers[g], group_world[g])
         for k in range(group_box_pairs.shape[0]):
             g, b = group_box_pairs[k, 0], group_box_pairs[k, 1]
-            if _aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= margin:
+            if aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= margin:
                 continue
             if (
-                _box_gap(group_world[g], box_rotations[b], box_centers[b], box_halves[b]) - group_radii[g]
+                box_gap(group_world[g], box_rotations[b], box_centers[b], box_halves[b]) - group_radii[g]
                 >= margin
             ):
                 continue
             coarse_hit = False
             for s in range(group_starts[g], group_stops[g]):
                 if not sphere_placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
+                    world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
                     sphere_placed[s] = True
                 if (
-                    _box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
+                    box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
                     - sphere_radii[s]
                     < margin
                 ):
@@ -422,21 +329,21 @@ def valid_configurations(
             g, h = group_pairs[k, 0], group_pairs[k, 1]
             if pair_state[k] > 0:
                 continue
-            if _distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= margin:
+            if distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= margin:
                 continue
             coarse_hit = False
             for s in range(group_starts[g], group_stops[g]):
                 if not sphere_placed[s]:
-                    _world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
+                    world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
                     sphere_placed[s] = True
-                if _distance(sphere_world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
+                if distance(sphere_world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
                     continue
                 for t in range(group_starts[h], group_stops[h]):
                     if not sphere_placed[t]:
-                        _world_point(poses[sphere_links[t]], sphere_centers[t], sphere_world[t])
+                        world_point(poses[sphere_links[t]], sphere_centers[t], sphere_world[t])
                         sphere_placed[t] = True
                     if (
-                        _distance(sphere_world[s], sphere_world[t]) - sphere_radii[s] - sphere_radii[t]
+                        distance(sphere_world[s], sphere_world[t]) - sphere_radii[s] - sphere_radii[t]
                         < margin
                     ):
                         coarse_hit = True
