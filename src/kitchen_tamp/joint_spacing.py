@@ -20,6 +20,10 @@ import numpy.typing as npt
 JUDGE_RESOLUTION_RAD: Final = 0.005
 """Joint-space spacing (rad, Euclidean) of the states the judge checks."""
 
+PLANNING_RESOLUTION_RAD: Final = 0.01
+"""Default spacing (rad, Euclidean) at which planners and their checkers test edges and segments
+while searching (what they hand over is checked again at ``JUDGE_RESOLUTION_RAD``)."""
+
 
 def interval_count(q0: npt.ArrayLike, q1: npt.ArrayLike, resolution: float) -> int:
     """Number of equal intervals the straight move q0 -> q1 is cut into at ``resolution``."""

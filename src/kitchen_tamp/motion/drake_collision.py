@@ -46,6 +46,7 @@ from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.multibody.tree import BodyIndex, JacobianWrtVariable, ModelInstanceIndex
 from pydrake.systems.framework import DiagramBuilder
 
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations, ValidityMask
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
@@ -161,7 +162,7 @@ class DrakeCollisionChecker:
         scene: DescribedScene,
         margin: float = 0.0,
         distance_horizon: float = DEFAULT_DISTANCE_HORIZON,
-        segment_resolution: float = 0.01,
+        segment_resolution: float = PLANNING_RESOLUTION_RAD,
     ) -> None:
         self.margin = float(margin)
         self.distance_horizon = float(distance_horizon)

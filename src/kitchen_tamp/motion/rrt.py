@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.configuration_tree import ConfigurationTree
@@ -26,7 +27,7 @@ class RrtHyperparameters:
 
     goal_bias: float = 0.2
     step_size: float = float(np.deg2rad(5.0))
-    edge_resolution: float = 0.01
+    edge_resolution: float = PLANNING_RESOLUTION_RAD
     goal_tolerance: float = float(np.deg2rad(1.0))
     max_iterations: int = 10_000
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.configuration_tree import ConfigurationTree
@@ -27,7 +28,7 @@ class RrtConnectHyperparameters:
     """Step (node spacing), edge-check resolution and iteration limit of `plan_rrt_connect`."""
 
     step_size: float = 1.0
-    edge_resolution: float = 0.01
+    edge_resolution: float = PLANNING_RESOLUTION_RAD
     max_iterations: int = 10_000
 
     def __post_init__(self) -> None:

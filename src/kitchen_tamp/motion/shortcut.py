@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kitchen_tamp.joint_spacing import interval_count
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD, interval_count
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath, path_length, segment_lengths
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
@@ -54,7 +54,7 @@ class ShortcutHyperparameters:
     """
 
     max_iterations: int = 200
-    edge_resolution: float = 0.01
+    edge_resolution: float = PLANNING_RESOLUTION_RAD
     corner_cutting_passes: int = 1
     prune_waypoints: bool = True
     connect_furthest_vertices: bool = True

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations, ValidityMask
 from kitchen_tamp.motion.drake_collision import DEFAULT_DISTANCE_HORIZON, DescribedScene
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
@@ -51,7 +52,7 @@ class SphereCollisionChecker:
         scene: DescribedScene,
         margin: float = 0.0,
         distance_horizon: float = DEFAULT_DISTANCE_HORIZON,
-        segment_resolution: float = 0.01,
+        segment_resolution: float = PLANNING_RESOLUTION_RAD,
         tolerance: float = DEFAULT_COVERING_TOLERANCE,
         mesh_padding: float = PYBULLET_MESH_MARGIN,
     ) -> None:
