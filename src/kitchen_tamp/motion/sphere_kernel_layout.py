@@ -17,7 +17,9 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.sphere_kinematics import TreeLayout
 from kitchen_tamp.motion.sphere_pair_tables import PairTables, no_tables
+from kitchen_tamp.motion.sphere_primitives import FIXED, REVOLUTE, REVOLUTE_Z, SKIPPED
 from kitchen_tamp.motion.sphere_scene import SphereGroup, SphereScene
 
 FloatArray = npt.NDArray[np.float64]
@@ -109,12 +111,48 @@ def _grown_tree(centers: bytes, radii: bytes) -> _Tree:
     return tree
 
 
+def _folded_tree(layout: TreeLayout) -> tuple[tuple[Any, ...], npt.NDArray[np.int64], FloatArray]:
+    """The tree as the validity kernel computes it, with the fixed links folded away: ((root,
+    parents, origins, kinds, axes, variables), carrier (L,), offset (L, 4, 4)), where each link's
+    pose is its carrier's (the root or a moving link) times its offset. A moving link's parent
+    becomes its parent's carrier, its origin the parent's offset times its own; a revolute joint
+    about z is marked REVOLUTE_Z, a folded link SKIPPED."""
+    root, parents, origins, kinds, axes, variables = layout.kernel_arrays()
+    count = len(parents)
+    carrier = np.arange(count, dtype=np.int64)
+    offset = np.broadcast_to(np.eye(4), (count, 4, 4)).copy()
+    folded_parents, folded_origins, folded_kinds = parents.copy(), origins.copy(), kinds.copy()
+    for link in range(count):
+        parent = int(parents[link])
+        if parent < 0:
+            continue
+        if kinds[link] == FIXED:
+            carrier[link] = carrier[parent]
+            offset[link] = offset[parent] @ origins[link]
+            folded_kinds[link] = SKIPPED
+            continue
+        folded_parents[link] = carrier[parent]
+        folded_origins[link] = offset[parent] @ origins[link]
+        if kinds[link] == REVOLUTE and np.array_equal(axes[link], [0.0, 0.0, 1.0]):
+            folded_kinds[link] = REVOLUTE_Z
+    arrays = (root, folded_parents, folded_origins, folded_kinds, axes, variables)
+    return arrays, carrier, offset
+
+
+def _on_carriers(
+    links: npt.NDArray[np.int64], centers: FloatArray, carrier: npt.NDArray[np.int64], offset: FloatArray
+) -> tuple[npt.NDArray[np.int64], FloatArray]:
+    """Points given on ``links`` re-expressed on the links' carriers."""
+    moved = np.einsum("nij,nj->ni", offset[links, :3, :3], centers) + offset[links, :3, 3]
+    return carrier[links].astype(np.int64), np.ascontiguousarray(moved)
+
+
 def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
     """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``, without pair
     tables (`with_pair_tables` adds them); the checked pairs are last (``group_box_pairs``, then
     ``group_pairs`` with each pair's table, here -1)."""
     tables = no_tables(len(scene.group_pairs))
-    layout = scene.tree.flat_layout()
+    kinematics, carrier, offset = _folded_tree(scene.tree.flat_layout())
     group_centers, group_radii = [], []
     for group in scene.groups:
         center, radius = _bound(scene.sphere_centers[group.spheres], scene.sphere_radii[group.spheres])
@@ -129,27 +167,32 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
     def indices(values: list[int] | IndexArray) -> npt.NDArray[np.int64]:
         return np.asarray(values, dtype=np.int64)
 
+    def carried(
+        links: list[int] | IndexArray, centers: FloatArray
+    ) -> tuple[npt.NDArray[np.int64], FloatArray]:
+        return _on_carriers(indices(links), np.asarray(centers, dtype=float).reshape(-1, 3), carrier, offset)
+
+    group_links, group_centers_carried = carried(
+        [g.robot_link for g in scene.groups], np.array(group_centers)
+    )
     return (
         lower,
         upper,
-        *layout.kernel_arrays(),
-        indices([g.robot_link for g in scene.groups]),
-        np.array(group_centers, dtype=float).reshape(-1, 3),
+        *kinematics,
+        group_links,
+        group_centers_carried,
         np.array(group_radii, dtype=float),
         indices([g.spheres.start for g in scene.groups]),
         indices([g.spheres.stop for g in scene.groups]),
-        indices(scene.sphere_links),
-        scene.sphere_centers,
+        *carried(scene.sphere_links, scene.sphere_centers),
         scene.sphere_radii,
         indices(roots),
-        indices(tree.links),
-        np.array(tree.centers, dtype=float).reshape(-1, 3),
+        *carried(tree.links, np.array(tree.centers)),
         np.array(tree.radii, dtype=float),
         np.array(tree.children, dtype=np.int64).reshape(-1, 2),
         indices(tree.first),
         indices(tree.last),
-        indices(scene.fine_links[order]),
-        np.ascontiguousarray(scene.fine_centers[order]),
+        *carried(scene.fine_links[order], scene.fine_centers[order]),
         np.ascontiguousarray(scene.fine_radii[order]),
         np.ascontiguousarray(boxes.rotations),
         np.ascontiguousarray(boxes.centers),

@@ -7,12 +7,17 @@ in a binary tree of bounding spheres per group (laid out by `sphere_kernel_layou
 
 Compiled by numba on first use and cached on disk (``cache=True``: beside this
 file, or where ``NUMBA_CACHE_DIR`` points), so a cold start loads it instead
-of compiling again. Arrays only.
+of compiling again. Arrays only. The helpers are inlined by LLVM (``forceinline``),
+not by numba (``inline="always"``), and take arrays with row indices, never rows:
+numba counts references to every array a numba-inlined call or a row view touches,
+atomically, and in these loops that cost more than the geometry.
 
-Layout: links in parent-before-child order with ``parents`` (-1 for the root),
-``origins`` (L, 4, 4) joint origins, ``kinds`` (0 fixed or held, 1 revolute, 2
-prismatic variable), ``axes`` (L, 3) unit joint axes and ``variables`` (L) column
-of the configuration (or -1); a held joint's motion is folded into its origin.
+Layout (`sphere_kernel_layout`, folded): links in parent-before-child order with
+``parents`` (-1 for the root), ``origins`` (L, 4, 4) joint origins, ``kinds``
+(`sphere_primitives`: FIXED, REVOLUTE, REVOLUTE_Z, PRISMATIC, or SKIPPED for a fixed
+link folded into its moving ancestor, whose spheres ride on that ancestor), ``axes``
+(L, 3) unit joint axes and ``variables`` (L) column of the configuration (or -1); a
+held joint's motion is folded into its origin. Poses are kept as their top 3x4 rows.
 """
 
 from __future__ import annotations
@@ -22,37 +27,39 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.sphere_primitives import (
-    aabb_gap,
-    apart,
-    box_gap,
-    distance,
-    link_poses,
-    world_point,
+    folded_link_poses,
+    place_point,
+    point_box_gap,
+    points_apart,
 )
 
 FloatArray = npt.NDArray[np.float64]
 
 
+_FAR = 1e300
+"""Larger than any squared gap in metres."""
 STACK_DEPTH = 256
 """Room for pending nodes (or node pairs) of one tree traversal; the trees are far shallower."""
 
 
-@numba.njit(cache=True, fastmath=True, inline="always")
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _place(
     index: int,
     poses: FloatArray,
     links: npt.NDArray[np.int64],
     local: FloatArray,
     world: FloatArray,
-    placed: npt.NDArray[np.bool_],
+    placed: npt.NDArray[np.int64],
+    stamp: int,
 ) -> None:
-    """World position of a sphere or bound, computed once per configuration."""
-    if not placed[index]:
-        world_point(poses[links[index]], local[index], world[index])
-        placed[index] = True
+    """World position of a sphere or bound, computed once per configuration: ``placed`` holds the
+    stamp of the configuration each was last placed for (no clearing between configurations)."""
+    if placed[index] != stamp:
+        place_point(poses, links[index], local, index, world)
+        placed[index] = stamp
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _tree_hits_box(
     root: int,
     b: int,
@@ -65,16 +72,17 @@ def _tree_hits_box(
     node_first: npt.NDArray[np.int64],
     node_last: npt.NDArray[np.int64],
     node_world: FloatArray,
-    node_placed: npt.NDArray[np.bool_],
+    node_placed: npt.NDArray[np.int64],
     sphere_links: npt.NDArray[np.int64],
     sphere_centers: FloatArray,
     sphere_radii: FloatArray,
     sphere_world: FloatArray,
-    sphere_placed: npt.NDArray[np.bool_],
+    sphere_placed: npt.NDArray[np.int64],
     box_rotations: FloatArray,
     box_centers: FloatArray,
     box_halves: FloatArray,
     stack: npt.NDArray[np.int64],
+    stamp: int,
 ) -> bool:
     """Whether a sphere under node ``root`` comes closer than the margin to box ``b``: bounds are
     opened only when they come that close."""
@@ -83,14 +91,14 @@ def _tree_hits_box(
     while top >= 0:
         n = stack[top]
         top -= 1
-        _place(n, poses, node_links, node_centers, node_world, node_placed)
-        if box_gap(node_world[n], box_rotations[b], box_centers[b], box_halves[b]) - node_radii[n] >= margin:
+        _place(n, poses, node_links, node_centers, node_world, node_placed, stamp)
+        if point_box_gap(node_world, n, box_rotations, box_centers, box_halves, b) - node_radii[n] >= margin:
             continue
         if node_children[n, 0] < 0:
             for s in range(node_first[n], node_last[n]):
-                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
+                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
                 if (
-                    box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
+                    point_box_gap(sphere_world, s, box_rotations, box_centers, box_halves, b)
                     - sphere_radii[s]
                     < margin
                 ):
@@ -102,7 +110,7 @@ def _tree_hits_box(
     return False
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _trees_touch(
     root_a: int,
     root_b: int,
@@ -115,13 +123,14 @@ def _trees_touch(
     node_first: npt.NDArray[np.int64],
     node_last: npt.NDArray[np.int64],
     node_world: FloatArray,
-    node_placed: npt.NDArray[np.bool_],
+    node_placed: npt.NDArray[np.int64],
     sphere_links: npt.NDArray[np.int64],
     sphere_centers: FloatArray,
     sphere_radii: FloatArray,
     sphere_world: FloatArray,
-    sphere_placed: npt.NDArray[np.bool_],
+    sphere_placed: npt.NDArray[np.int64],
     stack: npt.NDArray[np.int64],
+    stamp: int,
 ) -> bool:
     """Whether a sphere under node ``root_a`` comes closer than the margin to one under ``root_b``:
     pairs of bounds that come that close are opened, the larger first."""
@@ -130,20 +139,20 @@ def _trees_touch(
     while top >= 0:
         a, b = stack[2 * top], stack[2 * top + 1]
         top -= 1
-        _place(a, poses, node_links, node_centers, node_world, node_placed)
-        _place(b, poses, node_links, node_centers, node_world, node_placed)
-        if apart(node_world[a], node_world[b], node_radii[a] + node_radii[b] + margin):
+        _place(a, poses, node_links, node_centers, node_world, node_placed, stamp)
+        _place(b, poses, node_links, node_centers, node_world, node_placed, stamp)
+        if points_apart(node_world, a, node_world, b, node_radii[a] + node_radii[b] + margin):
             continue
         leaf_a, leaf_b = node_children[a, 0] < 0, node_children[b, 0] < 0
         if leaf_a and leaf_b:
             for s in range(node_first[a], node_last[a]):
-                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
-                if apart(sphere_world[s], node_world[b], sphere_radii[s] + node_radii[b] + margin):
+                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
+                if points_apart(sphere_world, s, node_world, b, sphere_radii[s] + node_radii[b] + margin):
                     continue
                 for t in range(node_first[b], node_last[b]):
-                    _place(t, poses, sphere_links, sphere_centers, sphere_world, sphere_placed)
-                    if not apart(
-                        sphere_world[s], sphere_world[t], sphere_radii[s] + sphere_radii[t] + margin
+                    _place(t, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
+                    if not points_apart(
+                        sphere_world, s, sphere_world, t, sphere_radii[s] + sphere_radii[t] + margin
                     ):
                         return True
             continue
@@ -158,20 +167,50 @@ def _trees_touch(
     return False
 
 
-@numba.njit(cache=True, fastmath=True, inline="always")
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _near_bound(
+    g: int,
+    h: int,
+    poses: FloatArray,
+    margin: float,
+    group_world: FloatArray,
+    group_radii: FloatArray,
+    group_starts: npt.NDArray[np.int64],
+    group_stops: npt.NDArray[np.int64],
+    sphere_links: npt.NDArray[np.int64],
+    sphere_centers: FloatArray,
+    sphere_radii: FloatArray,
+    sphere_world: FloatArray,
+    sphere_placed: npt.NDArray[np.int64],
+    stamp: int,
+    near: npt.NDArray[np.int64],
+) -> int:
+    """How many of group ``g``'s coarse spheres come within the margin of group ``h``'s bound (only
+    they can come that close to ``h``'s spheres), written to the front of ``near``."""
+    found = 0
+    for s in range(group_starts[g], group_stops[g]):
+        _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
+        if not points_apart(sphere_world, s, group_world, h, sphere_radii[s] + group_radii[h] + margin):
+            near[found] = s
+            found += 1
+    return found
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _table_cell(
-    q: FloatArray,
+    qs: FloatArray,
+    m: int,
     t: int,
     variables: npt.NDArray[np.int64],
     lows: FloatArray,
     steps: FloatArray,
     counts: npt.NDArray[np.int64],
 ) -> int:
-    """Row-major index in table ``t`` of the cell holding ``q``'s two joint values (clamped to the
-    grid: a value a hair outside the limits belongs to the border cell)."""
+    """Row-major index in table ``t`` of the cell holding ``qs[m]``'s two joint values (clamped to
+    the grid: a value a hair outside the limits belongs to the border cell)."""
     index = 0
     for axis in range(2):
-        cell = int(np.floor((q[variables[t, axis]] - lows[t, axis]) / steps[t, axis]))
+        cell = int(np.floor((qs[m, variables[t, axis]] - lows[t, axis]) / steps[t, axis]))
         cell = min(max(cell, 0), counts[t, axis] - 1)
         index = index * counts[t, axis] + cell
     return index
@@ -236,21 +275,39 @@ def valid_configurations(
     invalid before any kinematics (when ``margin`` is no smaller than the tables' ``table_margin``),
     and a pair it proves clear is skipped (when ``margin`` is no larger)."""
     count = qs.shape[0]
+    groups, boxes = group_radii.shape[0], box_halves.shape[0]
     clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
     pair_state = np.zeros(group_pairs.shape[0], dtype=np.int8)
     valid = np.ones(count, dtype=np.bool_)
-    poses = np.empty((parents.shape[0], 4, 4))
-    motion, frame = np.empty((4, 4)), np.empty((4, 4))
-    group_world = np.empty((group_radii.shape[0], 3))
+    poses = np.empty((parents.shape[0], 3, 4))
+    frame = np.empty((3, 4))
+    group_world = np.empty((groups, 3))
     sphere_world = np.empty((sphere_radii.shape[0], 3))
-    sphere_placed = np.zeros(sphere_radii.shape[0], dtype=np.bool_)
+    sphere_placed = np.zeros(sphere_radii.shape[0], dtype=np.int64)
     fine_world = np.empty((fine_radii.shape[0], 3))
-    fine_placed = np.zeros(fine_radii.shape[0], dtype=np.bool_)
+    fine_placed = np.zeros(fine_radii.shape[0], dtype=np.int64)
     node_world = np.empty((node_radii.shape[0], 3))
-    node_placed = np.zeros(node_radii.shape[0], dtype=np.bool_)
+    node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
+    near_first = np.empty(sphere_radii.shape[0], dtype=np.int64)
+    near_second = np.empty(sphere_radii.shape[0], dtype=np.int64)
+    # The box pairs as a dense (group, box) table: 0 where checked, far off where not, added to the
+    # squared gap of each group's bound to each box's axis-aligned bounds (one vectorised pass).
+    unchecked = np.full((groups, boxes), _FAR)
+    group_order = np.empty(groups, dtype=np.int64)
+    seen = np.zeros(groups, dtype=np.bool_)
+    ordered = 0
+    for k in range(group_box_pairs.shape[0]):
+        g = group_box_pairs[k, 0]
+        if not seen[g]:
+            seen[g] = True
+            group_order[ordered] = g
+            ordered += 1
+        unchecked[g, group_box_pairs[k, 1]] = 0.0
+    lows, highs = np.ascontiguousarray(box_lows.T), np.ascontiguousarray(box_highs.T)
     tolerance = 1e-9
     for m in range(count):
+        stamp = m + 1
         for j in range(qs.shape[1]):
             if qs[m, j] < lower[j] - tolerance or qs[m, j] > upper[j] + tolerance:
                 valid[m] = False
@@ -262,7 +319,7 @@ def valid_configurations(
             if t >= 0:
                 state = table_cells[
                     table_offsets[t]
-                    + _table_cell(qs[m], t, table_variables, table_lows, table_steps, table_counts)
+                    + _table_cell(qs, m, t, table_variables, table_lows, table_steps, table_counts)
                 ]
                 if (state > 0 and clear_usable) or (state < 0 and colliding_usable):
                     pair_state[k] = state
@@ -271,80 +328,125 @@ def valid_configurations(
                     break
         if not valid[m]:
             continue
-        link_poses(qs[m], root, parents, origins, kinds, axes, variables, poses, motion, frame)
-        sphere_placed[:] = False
-        fine_placed[:] = False
-        node_placed[:] = False
-        for g in range(group_radii.shape[0]):
-            world_point(poses[group_links[g]], group_centers[g], group_world[g])
-        for k in range(group_box_pairs.shape[0]):
-            g, b = group_box_pairs[k, 0], group_box_pairs[k, 1]
-            if aabb_gap(group_world[g], box_lows[b], box_highs[b]) - group_radii[g] >= margin:
+        folded_link_poses(qs, m, root, parents, origins, kinds, axes, variables, poses, frame)
+        for g in range(groups):
+            place_point(poses, group_links[g], group_centers, g, group_world)
+        for o in range(ordered):
+            g = group_order[o]
+            reach = group_radii[g] + margin
+            if reach <= 0.0:
                 continue
-            if (
-                box_gap(group_world[g], box_rotations[b], box_centers[b], box_halves[b]) - group_radii[g]
-                >= margin
-            ):
+            x, y, z = group_world[g, 0], group_world[g, 1], group_world[g, 2]
+            closest = _FAR
+            for b in range(boxes):
+                ex = max(lows[0, b] - x, x - highs[0, b], 0.0)
+                ey = max(lows[1, b] - y, y - highs[1, b], 0.0)
+                ez = max(lows[2, b] - z, z - highs[2, b], 0.0)
+                closest = min(closest, ex * ex + ey * ey + ez * ez + unchecked[g, b])
+            if closest >= reach * reach:
                 continue
-            coarse_hit = False
-            for s in range(group_starts[g], group_stops[g]):
-                if not sphere_placed[s]:
-                    world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
-                    sphere_placed[s] = True
+            for b in range(boxes):
+                if unchecked[g, b] > 0.0:
+                    continue
+                ex = max(lows[0, b] - x, x - highs[0, b], 0.0)
+                ey = max(lows[1, b] - y, y - highs[1, b], 0.0)
+                ez = max(lows[2, b] - z, z - highs[2, b], 0.0)
+                if ex * ex + ey * ey + ez * ez >= reach * reach:
+                    continue
                 if (
-                    box_gap(sphere_world[s], box_rotations[b], box_centers[b], box_halves[b])
-                    - sphere_radii[s]
-                    < margin
+                    point_box_gap(group_world, g, box_rotations, box_centers, box_halves, b) - group_radii[g]
+                    >= margin
                 ):
-                    coarse_hit = True
+                    continue
+                coarse_hit = False
+                for s in range(group_starts[g], group_stops[g]):
+                    _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
+                    if (
+                        point_box_gap(sphere_world, s, box_rotations, box_centers, box_halves, b)
+                        - sphere_radii[s]
+                        < margin
+                    ):
+                        coarse_hit = True
+                        break
+                if coarse_hit and _tree_hits_box(
+                    group_roots[g],
+                    b,
+                    poses,
+                    margin,
+                    node_links,
+                    node_centers,
+                    node_radii,
+                    node_children,
+                    node_first,
+                    node_last,
+                    node_world,
+                    node_placed,
+                    fine_links,
+                    fine_centers,
+                    fine_radii,
+                    fine_world,
+                    fine_placed,
+                    box_rotations,
+                    box_centers,
+                    box_halves,
+                    stack,
+                    stamp,
+                ):
+                    valid[m] = False
                     break
-            if coarse_hit and _tree_hits_box(
-                group_roots[g],
-                b,
-                poses,
-                margin,
-                node_links,
-                node_centers,
-                node_radii,
-                node_children,
-                node_first,
-                node_last,
-                node_world,
-                node_placed,
-                fine_links,
-                fine_centers,
-                fine_radii,
-                fine_world,
-                fine_placed,
-                box_rotations,
-                box_centers,
-                box_halves,
-                stack,
-            ):
-                valid[m] = False
+            if not valid[m]:
                 break
         if not valid[m]:
             continue
         for k in range(group_pairs.shape[0]):
-            g, h = group_pairs[k, 0], group_pairs[k, 1]
             if pair_state[k] > 0:
                 continue
-            if distance(group_world[g], group_world[h]) - group_radii[g] - group_radii[h] >= margin:
+            g, h = group_pairs[k, 0], group_pairs[k, 1]
+            if points_apart(group_world, g, group_world, h, group_radii[g] + group_radii[h] + margin):
                 continue
+            near_g = _near_bound(
+                g,
+                h,
+                poses,
+                margin,
+                group_world,
+                group_radii,
+                group_starts,
+                group_stops,
+                sphere_links,
+                sphere_centers,
+                sphere_radii,
+                sphere_world,
+                sphere_placed,
+                stamp,
+                near_first,
+            )
+            if near_g == 0:
+                continue
+            near_h = _near_bound(
+                h,
+                g,
+                poses,
+                margin,
+                group_world,
+                group_radii,
+                group_starts,
+                group_stops,
+                sphere_links,
+                sphere_centers,
+                sphere_radii,
+                sphere_world,
+                sphere_placed,
+                stamp,
+                near_second,
+            )
             coarse_hit = False
-            for s in range(group_starts[g], group_stops[g]):
-                if not sphere_placed[s]:
-                    world_point(poses[sphere_links[s]], sphere_centers[s], sphere_world[s])
-                    sphere_placed[s] = True
-                if distance(sphere_world[s], group_world[h]) - sphere_radii[s] - group_radii[h] >= margin:
-                    continue
-                for t in range(group_starts[h], group_stops[h]):
-                    if not sphere_placed[t]:
-                        world_point(poses[sphere_links[t]], sphere_centers[t], sphere_world[t])
-                        sphere_placed[t] = True
-                    if (
-                        distance(sphere_world[s], sphere_world[t]) - sphere_radii[s] - sphere_radii[t]
-                        < margin
+            for i in range(near_g):
+                s = near_first[i]
+                for j in range(near_h):
+                    t = near_second[j]
+                    if not points_apart(
+                        sphere_world, s, sphere_world, t, sphere_radii[s] + sphere_radii[t] + margin
                     ):
                         coarse_hit = True
                         break
@@ -369,6 +471,7 @@ def valid_configurations(
                 fine_world,
                 fine_placed,
                 stack,
+                stamp,
             ):
                 valid[m] = False
                 break

@@ -116,3 +116,131 @@ def apart(a: FloatArray, b: FloatArray, reach: float) -> bool:
 def world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
     for k in range(3):
         out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
+
+
+SKIPPED, REVOLUTE_Z = -1, 3
+"""Link kinds only the validity kernel's folded layout has (`sphere_kernel_layout`): a fixed link
+folded into its moving ancestor (no pose computed), a revolute joint about its frame's z axis."""
+
+# The functions below take arrays and row indices, never rows: a row taken from an array in a hot
+# loop is a view whose reference count numba updates atomically, which costs more than the
+# arithmetic around it.
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _compose_into(poses: FloatArray, parent: int, origins: FloatArray, link: int, frame: FloatArray) -> None:
+    """frame = poses[parent] @ origins[link] (top 3x4 rows)."""
+    for i in range(3):
+        a0, a1, a2 = poses[parent, i, 0], poses[parent, i, 1], poses[parent, i, 2]
+        for j in range(3):
+            frame[i, j] = a0 * origins[link, 0, j] + a1 * origins[link, 1, j] + a2 * origins[link, 2, j]
+        frame[i, 3] = (
+            a0 * origins[link, 0, 3]
+            + a1 * origins[link, 1, 3]
+            + a2 * origins[link, 2, 3]
+            + poses[parent, i, 3]
+        )
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def folded_link_poses(
+    qs: FloatArray,
+    m: int,
+    root: FloatArray,
+    parents: npt.NDArray[np.int64],
+    origins: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    axes: FloatArray,
+    variables: npt.NDArray[np.int64],
+    poses: FloatArray,
+    frame: FloatArray,
+) -> None:
+    """Top 3x4 rows of the world pose (``poses``, (L, 3, 4)) at configuration ``qs[m]`` of every
+    link the folded layout keeps: the root, and each moving link from its kept parent and its
+    origin (the fixed links between folded in); SKIPPED links are left as they are."""
+    for link in range(parents.shape[0]):
+        kind = kinds[link]
+        if kind == SKIPPED:
+            continue
+        parent = parents[link]
+        if parent < 0:
+            for i in range(3):
+                for j in range(4):
+                    poses[link, i, j] = root[i, j]
+            continue
+        _compose_into(poses, parent, origins, link, frame)
+        if kind == FIXED:
+            for i in range(3):
+                for j in range(4):
+                    poses[link, i, j] = frame[i, j]
+            continue
+        angle = qs[m, variables[link]]
+        if kind == REVOLUTE_Z:
+            c, s = np.cos(angle), np.sin(angle)
+            for i in range(3):
+                x, y = frame[i, 0], frame[i, 1]
+                poses[link, i, 0] = c * x + s * y
+                poses[link, i, 1] = c * y - s * x
+                poses[link, i, 2] = frame[i, 2]
+                poses[link, i, 3] = frame[i, 3]
+            continue
+        x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
+        if kind == REVOLUTE:
+            c, s = np.cos(angle), np.sin(angle)
+            t = 1.0 - c
+            m00, m01, m02 = t * x * x + c, t * x * y - s * z, t * x * z + s * y
+            m10, m11, m12 = t * x * y + s * z, t * y * y + c, t * y * z - s * x
+            m20, m21, m22 = t * x * z - s * y, t * y * z + s * x, t * z * z + c
+            for i in range(3):
+                f0, f1, f2 = frame[i, 0], frame[i, 1], frame[i, 2]
+                poses[link, i, 0] = f0 * m00 + f1 * m10 + f2 * m20
+                poses[link, i, 1] = f0 * m01 + f1 * m11 + f2 * m21
+                poses[link, i, 2] = f0 * m02 + f1 * m12 + f2 * m22
+                poses[link, i, 3] = frame[i, 3]
+        else:
+            for i in range(3):
+                f0, f1, f2 = frame[i, 0], frame[i, 1], frame[i, 2]
+                poses[link, i, 0], poses[link, i, 1], poses[link, i, 2] = f0, f1, f2
+                poses[link, i, 3] = frame[i, 3] + angle * (f0 * x + f1 * y + f2 * z)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def place_point(poses: FloatArray, link: int, local: FloatArray, index: int, world: FloatArray) -> None:
+    """world[index] = the point local[index] of ``link`` in the world (``poses`` (L, 3, 4) or (L, 4, 4))."""
+    x, y, z = local[index, 0], local[index, 1], local[index, 2]
+    for k in range(3):
+        world[index, k] = (
+            poses[link, k, 0] * x + poses[link, k, 1] * y + poses[link, k, 2] * z + poses[link, k, 3]
+        )
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def point_box_gap(
+    world: FloatArray, index: int, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
+) -> float:
+    """``box_gap`` of the point world[index] and box ``b``."""
+    outside = 0.0
+    deepest = -1e300
+    for axis in range(3):
+        local = (
+            rotations[b, 0, axis] * (world[index, 0] - centers[b, 0])
+            + rotations[b, 1, axis] * (world[index, 1] - centers[b, 1])
+            + rotations[b, 2, axis] * (world[index, 2] - centers[b, 2])
+        )
+        excess = abs(local) - halves[b, axis]
+        if excess > 0.0:
+            outside += excess * excess
+        if excess > deepest:
+            deepest = excess
+    if outside > 0.0:
+        return float(np.sqrt(outside))
+    return float(deepest)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def points_apart(a: FloatArray, i: int, b: FloatArray, j: int, reach: float) -> bool:
+    """``apart`` of the points a[i] and b[j]."""
+    if reach <= 0.0:
+        return True
+    dx, dy, dz = a[i, 0] - b[j, 0], a[i, 1] - b[j, 1], a[i, 2] - b[j, 2]
+    return bool(dx * dx + dy * dy + dz * dz >= reach * reach)
