@@ -31,6 +31,7 @@ from kitchen_tamp.motion.sphere_primitives import (
     place_point,
     point_box_gap,
     points_apart,
+    prefetch,
 )
 
 FloatArray = npt.NDArray[np.float64]
@@ -197,6 +198,30 @@ def _near_bound(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
+def _boxes_near(
+    x: float,
+    y: float,
+    z: float,
+    reach_squared: float,
+    low_x: FloatArray,
+    low_y: FloatArray,
+    low_z: FloatArray,
+    high_x: FloatArray,
+    high_y: FloatArray,
+    high_z: FloatArray,
+) -> int:
+    """How many boxes' axis-aligned bounds come within ``reach`` of the point (x, y, z) (branch-free
+    over contiguous arrays, so the loop runs in SIMD lanes)."""
+    near = 0
+    for b in range(low_x.shape[0]):
+        ex = max(low_x[b] - x, x - high_x[b], 0.0)
+        ey = max(low_y[b] - y, y - high_y[b], 0.0)
+        ez = max(low_z[b] - z, z - high_z[b], 0.0)
+        near += ex * ex + ey * ey + ez * ez < reach_squared
+    return near
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _table_cell(
     qs: FloatArray,
     m: int,
@@ -291,9 +316,9 @@ def valid_configurations(
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
     near_first = np.empty(sphere_radii.shape[0], dtype=np.int64)
     near_second = np.empty(sphere_radii.shape[0], dtype=np.int64)
-    # The box pairs as a dense (group, box) table: 0 where checked, far off where not, added to the
-    # squared gap of each group's bound to each box's axis-aligned bounds (one vectorised pass).
-    unchecked = np.full((groups, boxes), _FAR)
+    # The box pairs as a dense (group, box) table, row-major: 0 where checked, far off where not,
+    # added to the squared gap of each group's bound to each box's axis-aligned bounds.
+    unchecked = np.full(groups * boxes, _FAR)
     group_order = np.empty(groups, dtype=np.int64)
     seen = np.zeros(groups, dtype=np.bool_)
     ordered = 0
@@ -303,11 +328,23 @@ def valid_configurations(
             seen[g] = True
             group_order[ordered] = g
             ordered += 1
-        unchecked[g, group_box_pairs[k, 1]] = 0.0
-    lows, highs = np.ascontiguousarray(box_lows.T), np.ascontiguousarray(box_highs.T)
+        unchecked[g * boxes + group_box_pairs[k, 1]] = 0.0
+    low_x, low_y, low_z = box_lows[:, 0].copy(), box_lows[:, 1].copy(), box_lows[:, 2].copy()
+    high_x, high_y, high_z = box_highs[:, 0].copy(), box_highs[:, 1].copy(), box_highs[:, 2].copy()
     tolerance = 1e-9
+    tables = table_offsets.shape[0]
+    cells = np.empty((2, tables), dtype=np.int64)
     for m in range(count):
         stamp = m + 1
+        # Table cells are far apart in memory, so each lookup would wait on memory: the next row's
+        # cells are computed and fetched ahead while this row is checked.
+        for ahead in range(m + 1 if m > 0 else 0, min(m + 2, count)):
+            for t in range(tables):
+                cell = table_offsets[t] + _table_cell(
+                    qs, ahead, t, table_variables, table_lows, table_steps, table_counts
+                )
+                cells[ahead & 1, t] = cell
+                prefetch(table_cells, cell)
         for j in range(qs.shape[1]):
             if qs[m, j] < lower[j] - tolerance or qs[m, j] > upper[j] + tolerance:
                 valid[m] = False
@@ -317,10 +354,7 @@ def valid_configurations(
             t = group_pairs[k, 2]
             pair_state[k] = 0
             if t >= 0:
-                state = table_cells[
-                    table_offsets[t]
-                    + _table_cell(qs, m, t, table_variables, table_lows, table_steps, table_counts)
-                ]
+                state = table_cells[cells[m & 1, t]]
                 if (state > 0 and clear_usable) or (state < 0 and colliding_usable):
                     pair_state[k] = state
                 if pair_state[k] < 0:
@@ -337,20 +371,14 @@ def valid_configurations(
             if reach <= 0.0:
                 continue
             x, y, z = group_world[g, 0], group_world[g, 1], group_world[g, 2]
-            closest = _FAR
-            for b in range(boxes):
-                ex = max(lows[0, b] - x, x - highs[0, b], 0.0)
-                ey = max(lows[1, b] - y, y - highs[1, b], 0.0)
-                ez = max(lows[2, b] - z, z - highs[2, b], 0.0)
-                closest = min(closest, ex * ex + ey * ey + ez * ez + unchecked[g, b])
-            if closest >= reach * reach:
+            if _boxes_near(x, y, z, reach * reach, low_x, low_y, low_z, high_x, high_y, high_z) == 0:
                 continue
             for b in range(boxes):
-                if unchecked[g, b] > 0.0:
+                if unchecked[g * boxes + b] > 0.0:
                     continue
-                ex = max(lows[0, b] - x, x - highs[0, b], 0.0)
-                ey = max(lows[1, b] - y, y - highs[1, b], 0.0)
-                ez = max(lows[2, b] - z, z - highs[2, b], 0.0)
+                ex = max(low_x[b] - x, x - high_x[b], 0.0)
+                ey = max(low_y[b] - y, y - high_y[b], 0.0)
+                ez = max(low_z[b] - z, z - high_z[b], 0.0)
                 if ex * ex + ey * ey + ez * ez >= reach * reach:
                     continue
                 if (

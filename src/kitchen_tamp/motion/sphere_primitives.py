@@ -9,9 +9,14 @@ PRISMATIC), ``axes`` and ``variables``.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numba
 import numpy as np
 import numpy.typing as npt
+from llvmlite import ir  # type: ignore[import-untyped]
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -244,3 +249,29 @@ def points_apart(a: FloatArray, i: int, b: FloatArray, j: int, reach: float) -> 
         return True
     dx, dy, dz = a[i, 0] - b[j, 0], a[i, 1] - b[j, 1], a[i, 2] - b[j, 2]
     return bool(dx * dx + dy * dy + dz * dz >= reach * reach)
+
+
+def _prefetch_typed(typing_context: Any, array: Any, index: Any) -> Any:
+    """Typing and code generation of `prefetch`."""
+
+    def generate(context: Any, builder: Any, signature: Any, arguments: Any) -> Any:
+        array_type = signature.args[0]
+        data = context.make_array(array_type)(context, builder, arguments[0])
+        pointer = cgutils.get_item_pointer(  # type: ignore[no-untyped-call]
+            context, builder, array_type, data, [arguments[1]], wraparound=False
+        )
+        int32 = ir.IntType(32)
+        function_type = ir.FunctionType(ir.VoidType(), [pointer.type, int32, int32, int32])
+        function = cgutils.get_or_insert_function(  # type: ignore[no-untyped-call]
+            builder.module, function_type, "llvm.prefetch.p0"
+        )
+        # read, keep in all cache levels, data cache
+        builder.call(function, [pointer, ir.Constant(int32, 0), ir.Constant(int32, 3), ir.Constant(int32, 1)])
+        return context.get_dummy_value()
+
+    return numba.types.void(array, index), generate
+
+
+prefetch: Any = intrinsic(_prefetch_typed)
+"""prefetch(array, index) in compiled code: asks the processor to bring ``array[index]`` (a 1-D
+array) into cache ahead of its use; no effect on any result."""

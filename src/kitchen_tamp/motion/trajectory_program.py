@@ -159,9 +159,7 @@ def initial_waypoints(
     return waypoints
 
 
-def _collision_rows(
-    count: int, samples_between_waypoints: int, first: int, last: int
-) -> FloatArray:
+def _collision_rows(count: int, samples_between_waypoints: int, first: int, last: int) -> FloatArray:
     """Weights (rows, last - first + 1) of the collision points on steps first..last-1: each
     interior waypoint, then the points between it and the next."""
     fractions = np.arange(1, samples_between_waypoints + 1) / (samples_between_waypoints + 1)
