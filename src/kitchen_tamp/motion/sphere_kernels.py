@@ -306,6 +306,7 @@ def valid_configurations(
     valid = np.ones(count, dtype=np.bool_)
     poses = np.empty((parents.shape[0], 3, 4))
     frame = np.empty((3, 4))
+    sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
     group_world = np.empty((groups, 3))
     sphere_world = np.empty((sphere_radii.shape[0], 3))
     sphere_placed = np.zeros(sphere_radii.shape[0], dtype=np.int64)
@@ -362,7 +363,7 @@ def valid_configurations(
                     break
         if not valid[m]:
             continue
-        folded_link_poses(qs, m, root, parents, origins, kinds, axes, variables, poses, frame)
+        folded_link_poses(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
         for g in range(groups):
             place_point(poses, group_links[g], group_centers, g, group_world)
         for o in range(ordered):

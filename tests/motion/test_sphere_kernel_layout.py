@@ -1,0 +1,82 @@
+"""The validity kernel's fast paths change no verdict: its branch-free sines and cosines are libm's
+to an ulp, its folded kinematic tree puts every sphere where the full tree does, and its verdicts
+are the numpy reference's on configurations within a hair of the spheres' own contact."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+from kitchen_tamp.kitchen import KitchenScene, sample_targets
+from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
+from kitchen_tamp.motion.sphere_primitives import folded_link_poses, joint_sines_cosines, place_point
+from kitchen_tamp.world.scene_description import describe_collision_checker
+
+SINES_COSINES: Any = joint_sines_cosines
+FOLDED_POSES: Any = folded_link_poses
+PLACE: Any = place_point
+
+
+@pytest.fixture(scope="module")
+def checkers(kitchen: KitchenScene) -> list[SphereCollisionChecker]:
+    """The free hand, and the hand holding spam as the pick skill grasped it."""
+    built = [SphereCollisionChecker(describe_collision_checker(kitchen.collision_checker()))]
+    with kitchen.scene.preserved():
+        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
+        assert kitchen.held_box() == "spam"
+        built.append(SphereCollisionChecker(describe_collision_checker(kitchen.collision_checker())))
+    return built
+
+
+def test_sines_and_cosines_are_numpys_to_an_ulp() -> None:
+    qs = np.random.default_rng(30).uniform(-4.0, 4.0, size=(20000, 7))
+    qs[:8, 0] = [0.0, np.pi / 4, np.pi / 2, -np.pi / 2, np.pi, -np.pi, 3 * np.pi / 4, 1e-300]
+    sines, cosines = np.empty_like(qs), np.empty_like(qs)
+    for m in range(len(qs)):
+        SINES_COSINES(qs, m, sines[m], cosines[m])
+    assert np.max(np.abs(sines - np.sin(qs))) < 3e-16
+    assert np.max(np.abs(cosines - np.cos(qs))) < 3e-16
+
+
+def test_folded_tree_places_every_sphere_where_the_full_tree_does(
+    checkers: list[SphereCollisionChecker],
+) -> None:
+    rng = np.random.default_rng(31)
+    for checker in checkers:
+        model = checker.model
+        arguments = kernel_arguments(model, checker.lower, checker.upper)
+        root, parents, origins, kinds, axes, variables = arguments[2:8]
+        sphere_links, sphere_centers = arguments[13], arguments[14]
+        qs = rng.uniform(checker.lower, checker.upper, size=(50, 7))
+        expected = model.sphere_positions(model.tree.link_poses(qs))
+        poses, frame = np.empty((len(parents), 3, 4)), np.empty((3, 4))
+        sines, cosines = np.empty(7), np.empty(7)
+        world = np.empty_like(sphere_centers)
+        for m in range(len(qs)):
+            FOLDED_POSES(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+            for s in range(len(sphere_links)):
+                PLACE(poses, sphere_links[s], sphere_centers, s, world)
+            assert np.max(np.abs(world - expected[m])) < 1e-12
+
+
+def test_verdicts_at_the_spheres_own_contact_are_the_numpy_references(
+    checkers: list[SphereCollisionChecker],
+) -> None:
+    """Configurations bisected to within 1e-8 rad of where the spheres start to touch (where a
+    reordered or rounded check would first disagree; uniform ones are compared in test_sphere_model)."""
+    rng = np.random.default_rng(32)
+    for checker in checkers:
+        qs = rng.uniform(checker.lower, checker.upper, size=(4000, 7))
+        valid = checker.is_valid(qs)
+        free, colliding = qs[valid][:60], qs[~valid][:60]
+        count = min(len(free), len(colliding))
+        free, colliding = free[:count], colliding[:count]
+        for _ in range(28):
+            middle = (free + colliding) / 2.0
+            middle_valid = checker.is_valid(middle)[:, None]
+            free, colliding = np.where(middle_valid, middle, free), np.where(middle_valid, colliding, middle)
+        near = np.concatenate([free, colliding])
+        assert checker.is_valid(near).tolist() == checker.is_valid_uncompiled(near).tolist()
