@@ -25,8 +25,10 @@ from kitchen_tamp.motion.sphere_scene import SphereGroup, SphereScene
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
 
-LEAF_SIZE = 4
-"""Spheres per leaf of a bounding-sphere tree at most."""
+LEAF_SIZE = 24
+"""Spheres per leaf of a bounding-sphere tree at most: large leaves make shallow trees, whose
+descent (one unpredictable branch per node pair) costs more than testing a few more spheres in
+straight loops (measured: 4 -> 24 per leaf, 1.17M -> 1.39M checks/CPU s on uniform samples)."""
 
 
 def _split(centers: FloatArray, members: IndexArray) -> tuple[IndexArray, IndexArray]:
