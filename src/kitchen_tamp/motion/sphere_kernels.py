@@ -341,6 +341,9 @@ def valid_configurations(
         # cells are computed and fetched ahead while this row is checked.
         for ahead in range(m + 1 if m > 0 else 0, min(m + 2, count)):
             for t in range(tables):
+                if table_counts[t, 0] * table_counts[t, 1] == 1:  # one cell: nothing to look up
+                    cells[ahead & 1, t] = table_offsets[t]
+                    continue
                 cell = table_offsets[t] + _table_cell(
                     qs, ahead, t, table_variables, table_lows, table_steps, table_counts
                 )

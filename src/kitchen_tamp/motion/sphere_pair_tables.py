@@ -243,6 +243,8 @@ def pair_tables(scene: SphereScene, arguments: tuple[Any, ...], margin: float) -
             colliding = ~_prove_cells(*cell_centres, margin - slack)
             proved = clear.astype(np.int8) - colliding.astype(np.int8)
             _store_cells(key, proved)
+        if np.all(proved > 0):  # clear everywhere: one cell says so, and costs no lookup
+            count, step, proved = np.ones(2, dtype=np.int64), span.astype(float), proved[:1]
         pair_index[k] = len(variables)
         variables.append((first, second))
         lows.append(low)
