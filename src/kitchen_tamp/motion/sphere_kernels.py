@@ -27,6 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.sphere_primitives import (
+    box_gap_at,
     folded_link_poses,
     place_point,
     point_box_gap,
@@ -169,32 +170,58 @@ def _trees_touch(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _near_bound(
+def _place_coarse(
     g: int,
-    h: int,
     poses: FloatArray,
-    margin: float,
-    group_world: FloatArray,
-    group_radii: FloatArray,
+    group_links: npt.NDArray[np.int64],
     group_starts: npt.NDArray[np.int64],
     group_stops: npt.NDArray[np.int64],
-    sphere_links: npt.NDArray[np.int64],
-    sphere_centers: FloatArray,
-    sphere_radii: FloatArray,
-    sphere_world: FloatArray,
-    sphere_placed: npt.NDArray[np.int64],
+    coarse_local: FloatArray,
+    coarse_world: FloatArray,
+    coarse_placed: npt.NDArray[np.int64],
     stamp: int,
-    near: npt.NDArray[np.int64],
-) -> int:
-    """How many of group ``g``'s coarse spheres come within the margin of group ``h``'s bound (only
-    they can come that close to ``h``'s spheres), written to the front of ``near``."""
-    found = 0
+) -> None:
+    """World centres (x, y and z rows of ``coarse_world``) of group ``g``'s coarse spheres, all on
+    its link (one SIMD pass), once per configuration."""
+    if coarse_placed[g] == stamp:
+        return
+    coarse_placed[g] = stamp
+    link = group_links[g]
+    r00, r01, r02, t0 = poses[link, 0, 0], poses[link, 0, 1], poses[link, 0, 2], poses[link, 0, 3]
+    r10, r11, r12, t1 = poses[link, 1, 0], poses[link, 1, 1], poses[link, 1, 2], poses[link, 1, 3]
+    r20, r21, r22, t2 = poses[link, 2, 0], poses[link, 2, 1], poses[link, 2, 2], poses[link, 2, 3]
+    for signed in range(group_starts[g], group_stops[g]):
+        s = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
+        x, y, z = coarse_local[0, s], coarse_local[1, s], coarse_local[2, s]
+        coarse_world[0, s] = r00 * x + r01 * y + r02 * z + t0
+        coarse_world[1, s] = r10 * x + r11 * y + r12 * z + t1
+        coarse_world[2, s] = r20 * x + r21 * y + r22 * z + t2
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _coarse_spheres_touch(
+    g: int,
+    h: int,
+    margin: float,
+    group_starts: npt.NDArray[np.int64],
+    group_stops: npt.NDArray[np.int64],
+    sphere_radii: FloatArray,
+    coarse_world: FloatArray,
+) -> bool:
+    """Whether a coarse sphere of group ``g`` comes closer than the margin to one of group ``h``:
+    per sphere of ``g``, one branch-free SIMD pass over ``h``'s."""
     for s in range(group_starts[g], group_stops[g]):
-        _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
-        if not points_apart(sphere_world, s, group_world, h, sphere_radii[s] + group_radii[h] + margin):
-            near[found] = s
-            found += 1
-    return found
+        x, y, z = coarse_world[0, s], coarse_world[1, s], coarse_world[2, s]
+        reach_s = sphere_radii[s] + margin
+        touching = 0
+        for signed in range(group_starts[h], group_stops[h]):
+            t = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
+            dx, dy, dz = coarse_world[0, t] - x, coarse_world[1, t] - y, coarse_world[2, t] - z
+            reach = reach_s + sphere_radii[t]
+            touching += (reach > 0.0) & (dx * dx + dy * dy + dz * dz < reach * reach)
+        if touching:
+            return True
+    return False
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -308,15 +335,14 @@ def valid_configurations(
     frame = np.empty((3, 4))
     sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
     group_world = np.empty((groups, 3))
-    sphere_world = np.empty((sphere_radii.shape[0], 3))
-    sphere_placed = np.zeros(sphere_radii.shape[0], dtype=np.int64)
+    coarse_local = np.ascontiguousarray(sphere_centers.T)
+    coarse_world = np.empty((3, sphere_radii.shape[0]))
+    coarse_placed = np.zeros(groups, dtype=np.int64)
     fine_world = np.empty((fine_radii.shape[0], 3))
     fine_placed = np.zeros(fine_radii.shape[0], dtype=np.int64)
     node_world = np.empty((node_radii.shape[0], 3))
     node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
-    near_first = np.empty(sphere_radii.shape[0], dtype=np.int64)
-    near_second = np.empty(sphere_radii.shape[0], dtype=np.int64)
     # The box pairs as a dense (group, box) table, row-major: 0 where checked, far off where not,
     # added to the squared gap of each group's bound to each box's axis-aligned bounds.
     unchecked = np.full(groups * boxes, _FAR)
@@ -390,14 +416,29 @@ def valid_configurations(
                     >= margin
                 ):
                     continue
+                _place_coarse(
+                    g,
+                    poses,
+                    group_links,
+                    group_starts,
+                    group_stops,
+                    coarse_local,
+                    coarse_world,
+                    coarse_placed,
+                    stamp,
+                )
                 coarse_hit = False
                 for s in range(group_starts[g], group_stops[g]):
-                    _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
-                    if (
-                        point_box_gap(sphere_world, s, box_rotations, box_centers, box_halves, b)
-                        - sphere_radii[s]
-                        < margin
-                    ):
+                    gap = box_gap_at(
+                        coarse_world[0, s],
+                        coarse_world[1, s],
+                        coarse_world[2, s],
+                        box_rotations,
+                        box_centers,
+                        box_halves,
+                        b,
+                    )
+                    if gap - sphere_radii[s] < margin:
                         coarse_hit = True
                         break
                 if coarse_hit and _tree_hits_box(
@@ -436,54 +477,21 @@ def valid_configurations(
             g, h = group_pairs[k, 0], group_pairs[k, 1]
             if points_apart(group_world, g, group_world, h, group_radii[g] + group_radii[h] + margin):
                 continue
-            near_g = _near_bound(
-                g,
-                h,
-                poses,
-                margin,
-                group_world,
-                group_radii,
-                group_starts,
-                group_stops,
-                sphere_links,
-                sphere_centers,
-                sphere_radii,
-                sphere_world,
-                sphere_placed,
-                stamp,
-                near_first,
+            for group in (g, h):
+                _place_coarse(
+                    group,
+                    poses,
+                    group_links,
+                    group_starts,
+                    group_stops,
+                    coarse_local,
+                    coarse_world,
+                    coarse_placed,
+                    stamp,
+                )
+            coarse_hit = _coarse_spheres_touch(
+                g, h, margin, group_starts, group_stops, sphere_radii, coarse_world
             )
-            if near_g == 0:
-                continue
-            near_h = _near_bound(
-                h,
-                g,
-                poses,
-                margin,
-                group_world,
-                group_radii,
-                group_starts,
-                group_stops,
-                sphere_links,
-                sphere_centers,
-                sphere_radii,
-                sphere_world,
-                sphere_placed,
-                stamp,
-                near_second,
-            )
-            coarse_hit = False
-            for i in range(near_g):
-                s = near_first[i]
-                for j in range(near_h):
-                    t = near_second[j]
-                    if not points_apart(
-                        sphere_world, s, sphere_world, t, sphere_radii[s] + sphere_radii[t] + margin
-                    ):
-                        coarse_hit = True
-                        break
-                if coarse_hit:
-                    break
             if coarse_hit and _trees_touch(
                 group_roots[g],
                 group_roots[h],

@@ -269,17 +269,17 @@ def place_point(poses: FloatArray, link: int, local: FloatArray, index: int, wor
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def point_box_gap(
-    world: FloatArray, index: int, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
+def box_gap_at(
+    x: float, y: float, z: float, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
 ) -> float:
-    """``box_gap`` of the point world[index] and box ``b``."""
+    """``box_gap`` of the point (x, y, z) and box ``b``."""
     outside = 0.0
     deepest = -1e300
     for axis in range(3):
         local = (
-            rotations[b, 0, axis] * (world[index, 0] - centers[b, 0])
-            + rotations[b, 1, axis] * (world[index, 1] - centers[b, 1])
-            + rotations[b, 2, axis] * (world[index, 2] - centers[b, 2])
+            rotations[b, 0, axis] * (x - centers[b, 0])
+            + rotations[b, 1, axis] * (y - centers[b, 1])
+            + rotations[b, 2, axis] * (z - centers[b, 2])
         )
         excess = abs(local) - halves[b, axis]
         if excess > 0.0:
@@ -289,6 +289,14 @@ def point_box_gap(
     if outside > 0.0:
         return float(np.sqrt(outside))
     return float(deepest)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def point_box_gap(
+    world: FloatArray, index: int, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
+) -> float:
+    """``box_gap`` of the point world[index] and box ``b``."""
+    return box_gap_at(world[index, 0], world[index, 1], world[index, 2], rotations, centers, halves, b)
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
