@@ -1,7 +1,7 @@
 """The arrays the compiled validity kernel (`sphere_kernels.valid_configurations`) takes, laid out
 from a `SphereScene`: the kinematic tree, the coarse spheres with one bound per group, the fine
-spheres in a binary tree of bounding spheres per group, the obstacle boxes and the checked pairs
-in the order most likely to meet a collision first.
+spheres in a binary tree of bounding spheres per group (their centres as x, y and z rows), the
+obstacle boxes and the checked pairs in the order most likely to meet a collision first.
 
 A group's fine spheres are halved across the widest extent of their centres until a leaf holds
 at most ``LEAF_SIZE``; spheres are stored leaf by leaf, so every node's spheres are one range. A
@@ -25,10 +25,12 @@ from kitchen_tamp.motion.sphere_scene import SphereGroup, SphereScene
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
 
-LEAF_SIZE = 24
-"""Spheres per leaf of a bounding-sphere tree at most: large leaves make shallow trees, whose
-descent (one unpredictable branch per node pair) costs more than testing a few more spheres in
-straight loops (measured: 4 -> 24 per leaf, 1.17M -> 1.39M checks/CPU s on uniform samples)."""
+LEAF_SIZE = 96
+"""Spheres per leaf of a bounding-sphere tree at most: the kernel places a leaf's spheres and tests
+two leaves against each other in SIMD lanes, where a descent costs one unpredictable branch per
+node pair, so shallow trees of large leaves win (measured on the motion.py kitchen samples, per
+CPU s: leaves of 4 spheres 1.17M uniform; of 24, 1.44M uniform and 363k within 1e-6 rad of the
+spheres' own contact; of 48, 1.49M and 405k; of 96, 1.48M and 427k)."""
 
 
 def _split(centers: FloatArray, members: IndexArray) -> tuple[IndexArray, IndexArray]:
@@ -149,6 +151,12 @@ def _on_carriers(
     return carrier[links].astype(np.int64), np.ascontiguousarray(moved)
 
 
+def _rows(links: npt.NDArray[np.int64], points: FloatArray) -> tuple[npt.NDArray[np.int64], FloatArray]:
+    """(links, points as x, y and z rows): the fine spheres' layout, which the kernel places a
+    leaf at a time in SIMD lanes."""
+    return links, np.ascontiguousarray(points.T)
+
+
 def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -> tuple[Any, ...]:
     """Every argument of ``valid_configurations`` after ``qs`` and before ``margin``, without pair
     tables (`with_pair_tables` adds them); the checked pairs are last (``group_box_pairs``, then
@@ -194,7 +202,7 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
         np.array(tree.children, dtype=np.int64).reshape(-1, 2),
         indices(tree.first),
         indices(tree.last),
-        *carried(scene.fine_links[order], scene.fine_centers[order]),
+        *_rows(*carried(scene.fine_links[order], scene.fine_centers[order])),
         np.ascontiguousarray(scene.fine_radii[order]),
         np.ascontiguousarray(boxes.rotations),
         np.ascontiguousarray(boxes.centers),

@@ -62,6 +62,76 @@ def _place(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
+def _place_span(
+    poses: FloatArray, link: int, local: FloatArray, world: FloatArray, first: int, last: int
+) -> None:
+    """World centres (x, y and z rows of ``world``) of the points ``first:last`` of ``local``, all
+    on ``link``: one SIMD pass."""
+    r00, r01, r02, t0 = poses[link, 0, 0], poses[link, 0, 1], poses[link, 0, 2], poses[link, 0, 3]
+    r10, r11, r12, t1 = poses[link, 1, 0], poses[link, 1, 1], poses[link, 1, 2], poses[link, 1, 3]
+    r20, r21, r22, t2 = poses[link, 2, 0], poses[link, 2, 1], poses[link, 2, 2], poses[link, 2, 3]
+    for signed in range(first, last):
+        s = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
+        x, y, z = local[0, s], local[1, s], local[2, s]
+        world[0, s] = r00 * x + r01 * y + r02 * z + t0
+        world[1, s] = r10 * x + r11 * y + r12 * z + t1
+        world[2, s] = r20 * x + r21 * y + r22 * z + t2
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _place_leaf(
+    n: int,
+    poses: FloatArray,
+    node_links: npt.NDArray[np.int64],
+    node_first: npt.NDArray[np.int64],
+    node_last: npt.NDArray[np.int64],
+    sphere_local: FloatArray,
+    sphere_world: FloatArray,
+    leaf_placed: npt.NDArray[np.int64],
+    stamp: int,
+) -> None:
+    """The spheres of leaf ``n`` placed, once per configuration."""
+    if leaf_placed[n] != stamp:
+        _place_span(poses, node_links[n], sphere_local, sphere_world, node_first[n], node_last[n])
+        leaf_placed[n] = stamp
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _spans_touch(
+    first_a: int,
+    last_a: int,
+    first_b: int,
+    last_b: int,
+    margin: float,
+    radii: FloatArray,
+    world: FloatArray,
+    bound: FloatArray,
+    b: int,
+    bound_radius: float,
+) -> bool:
+    """Whether a sphere of ``first_a:last_a`` comes closer than the margin to one of
+    ``first_b:last_b`` (centres in the x, y and z rows of ``world``), the second span held in the
+    sphere ``bound[b]`` of radius ``bound_radius``: per sphere of the first span that comes that
+    close to the bound, one branch-free SIMD pass over the second."""
+    for s in range(first_a, last_a):
+        x, y, z = world[0, s], world[1, s], world[2, s]
+        reach_s = radii[s] + margin
+        bx, by, bz = bound[b, 0] - x, bound[b, 1] - y, bound[b, 2] - z
+        reach_bound = reach_s + bound_radius
+        if reach_bound <= 0.0 or bx * bx + by * by + bz * bz >= reach_bound * reach_bound:
+            continue
+        touching = 0
+        for signed in range(first_b, last_b):
+            t = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
+            dx, dy, dz = world[0, t] - x, world[1, t] - y, world[2, t] - z
+            reach = reach_s + radii[t]
+            touching += (reach > 0.0) & (dx * dx + dy * dy + dz * dz < reach * reach)
+        if touching:
+            return True
+    return False
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _tree_hits_box(
     root: int,
     b: int,
@@ -75,11 +145,10 @@ def _tree_hits_box(
     node_last: npt.NDArray[np.int64],
     node_world: FloatArray,
     node_placed: npt.NDArray[np.int64],
-    sphere_links: npt.NDArray[np.int64],
-    sphere_centers: FloatArray,
+    sphere_local: FloatArray,
     sphere_radii: FloatArray,
     sphere_world: FloatArray,
-    sphere_placed: npt.NDArray[np.int64],
+    leaf_placed: npt.NDArray[np.int64],
     box_rotations: FloatArray,
     box_centers: FloatArray,
     box_halves: FloatArray,
@@ -97,13 +166,12 @@ def _tree_hits_box(
         if point_box_gap(node_world, n, box_rotations, box_centers, box_halves, b) - node_radii[n] >= margin:
             continue
         if node_children[n, 0] < 0:
+            _place_leaf(
+                n, poses, node_links, node_first, node_last, sphere_local, sphere_world, leaf_placed, stamp
+            )
             for s in range(node_first[n], node_last[n]):
-                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
-                if (
-                    point_box_gap(sphere_world, s, box_rotations, box_centers, box_halves, b)
-                    - sphere_radii[s]
-                    < margin
-                ):
+                x, y, z = sphere_world[0, s], sphere_world[1, s], sphere_world[2, s]
+                if box_gap_at(x, y, z, box_rotations, box_centers, box_halves, b) - sphere_radii[s] < margin:
                     return True
             continue
         stack[top + 1] = node_children[n, 0]
@@ -126,11 +194,10 @@ def _trees_touch(
     node_last: npt.NDArray[np.int64],
     node_world: FloatArray,
     node_placed: npt.NDArray[np.int64],
-    sphere_links: npt.NDArray[np.int64],
-    sphere_centers: FloatArray,
+    sphere_local: FloatArray,
     sphere_radii: FloatArray,
     sphere_world: FloatArray,
-    sphere_placed: npt.NDArray[np.int64],
+    leaf_placed: npt.NDArray[np.int64],
     stack: npt.NDArray[np.int64],
     stamp: int,
 ) -> bool:
@@ -147,16 +214,31 @@ def _trees_touch(
             continue
         leaf_a, leaf_b = node_children[a, 0] < 0, node_children[b, 0] < 0
         if leaf_a and leaf_b:
-            for s in range(node_first[a], node_last[a]):
-                _place(s, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
-                if points_apart(sphere_world, s, node_world, b, sphere_radii[s] + node_radii[b] + margin):
-                    continue
-                for t in range(node_first[b], node_last[b]):
-                    _place(t, poses, sphere_links, sphere_centers, sphere_world, sphere_placed, stamp)
-                    if not points_apart(
-                        sphere_world, s, sphere_world, t, sphere_radii[s] + sphere_radii[t] + margin
-                    ):
-                        return True
+            for leaf in (a, b):
+                _place_leaf(
+                    leaf,
+                    poses,
+                    node_links,
+                    node_first,
+                    node_last,
+                    sphere_local,
+                    sphere_world,
+                    leaf_placed,
+                    stamp,
+                )
+            if _spans_touch(
+                node_first[a],
+                node_last[a],
+                node_first[b],
+                node_last[b],
+                margin,
+                sphere_radii,
+                sphere_world,
+                node_world,
+                b,
+                node_radii[b],
+            ):
+                return True
             continue
         if leaf_b or (not leaf_a and node_radii[a] >= node_radii[b]):
             for child in range(2):
@@ -181,47 +263,10 @@ def _place_coarse(
     coarse_placed: npt.NDArray[np.int64],
     stamp: int,
 ) -> None:
-    """World centres (x, y and z rows of ``coarse_world``) of group ``g``'s coarse spheres, all on
-    its link (one SIMD pass), once per configuration."""
-    if coarse_placed[g] == stamp:
-        return
-    coarse_placed[g] = stamp
-    link = group_links[g]
-    r00, r01, r02, t0 = poses[link, 0, 0], poses[link, 0, 1], poses[link, 0, 2], poses[link, 0, 3]
-    r10, r11, r12, t1 = poses[link, 1, 0], poses[link, 1, 1], poses[link, 1, 2], poses[link, 1, 3]
-    r20, r21, r22, t2 = poses[link, 2, 0], poses[link, 2, 1], poses[link, 2, 2], poses[link, 2, 3]
-    for signed in range(group_starts[g], group_stops[g]):
-        s = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
-        x, y, z = coarse_local[0, s], coarse_local[1, s], coarse_local[2, s]
-        coarse_world[0, s] = r00 * x + r01 * y + r02 * z + t0
-        coarse_world[1, s] = r10 * x + r11 * y + r12 * z + t1
-        coarse_world[2, s] = r20 * x + r21 * y + r22 * z + t2
-
-
-@numba.njit(cache=True, fastmath=True, forceinline=True)
-def _coarse_spheres_touch(
-    g: int,
-    h: int,
-    margin: float,
-    group_starts: npt.NDArray[np.int64],
-    group_stops: npt.NDArray[np.int64],
-    sphere_radii: FloatArray,
-    coarse_world: FloatArray,
-) -> bool:
-    """Whether a coarse sphere of group ``g`` comes closer than the margin to one of group ``h``:
-    per sphere of ``g``, one branch-free SIMD pass over ``h``'s."""
-    for s in range(group_starts[g], group_stops[g]):
-        x, y, z = coarse_world[0, s], coarse_world[1, s], coarse_world[2, s]
-        reach_s = sphere_radii[s] + margin
-        touching = 0
-        for signed in range(group_starts[h], group_stops[h]):
-            t = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
-            dx, dy, dz = coarse_world[0, t] - x, coarse_world[1, t] - y, coarse_world[2, t] - z
-            reach = reach_s + sphere_radii[t]
-            touching += (reach > 0.0) & (dx * dx + dy * dy + dz * dz < reach * reach)
-        if touching:
-            return True
-    return False
+    """Group ``g``'s coarse spheres placed (all on its link), once per configuration."""
+    if coarse_placed[g] != stamp:
+        _place_span(poses, group_links[g], coarse_local, coarse_world, group_starts[g], group_stops[g])
+        coarse_placed[g] = stamp
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -338,8 +383,8 @@ def valid_configurations(
     coarse_local = np.ascontiguousarray(sphere_centers.T)
     coarse_world = np.empty((3, sphere_radii.shape[0]))
     coarse_placed = np.zeros(groups, dtype=np.int64)
-    fine_world = np.empty((fine_radii.shape[0], 3))
-    fine_placed = np.zeros(fine_radii.shape[0], dtype=np.int64)
+    fine_world = np.empty((3, fine_radii.shape[0]))
+    leaf_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     node_world = np.empty((node_radii.shape[0], 3))
     node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
@@ -454,11 +499,10 @@ def valid_configurations(
                     node_last,
                     node_world,
                     node_placed,
-                    fine_links,
                     fine_centers,
                     fine_radii,
                     fine_world,
-                    fine_placed,
+                    leaf_placed,
                     box_rotations,
                     box_centers,
                     box_halves,
@@ -489,8 +533,17 @@ def valid_configurations(
                     coarse_placed,
                     stamp,
                 )
-            coarse_hit = _coarse_spheres_touch(
-                g, h, margin, group_starts, group_stops, sphere_radii, coarse_world
+            coarse_hit = _spans_touch(
+                group_starts[g],
+                group_stops[g],
+                group_starts[h],
+                group_stops[h],
+                margin,
+                sphere_radii,
+                coarse_world,
+                group_world,
+                h,
+                group_radii[h],
             )
             if coarse_hit and _trees_touch(
                 group_roots[g],
@@ -505,11 +558,10 @@ def valid_configurations(
                 node_last,
                 node_world,
                 node_placed,
-                fine_links,
                 fine_centers,
                 fine_radii,
                 fine_world,
-                fine_placed,
+                leaf_placed,
                 stack,
                 stamp,
             ):
