@@ -12,7 +12,16 @@ import pytest
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
-from kitchen_tamp.motion.sphere_primitives import folded_link_poses, joint_sines_cosines, place_point
+from kitchen_tamp.motion.sphere_primitives import (
+    FIXED,
+    PRISMATIC,
+    REVOLUTE,
+    REVOLUTE_Z,
+    SKIPPED,
+    folded_link_poses,
+    joint_sines_cosines,
+    place_point,
+)
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 SINES_COSINES: Any = joint_sines_cosines
@@ -39,6 +48,44 @@ def test_sines_and_cosines_are_numpys_to_an_ulp() -> None:
         SINES_COSINES(qs, m, sines[m], cosines[m])
     assert np.max(np.abs(sines - np.sin(qs))) < 3e-16
     assert np.max(np.abs(cosines - np.cos(qs))) < 3e-16
+
+
+def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' rotation (4x4) about a unit axis."""
+    x, y, z = axis
+    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    pose = np.eye(4)
+    pose[:3, :3] += np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
+    return pose
+
+
+def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> None:
+    """A chain with a revolute joint about a tilted axis, one about z, a prismatic joint and a
+    skipped link: each kept pose is its parent's times its origin times its joint's motion."""
+    rng = np.random.default_rng(33)
+    kinds = np.array([FIXED, REVOLUTE, REVOLUTE_Z, SKIPPED, PRISMATIC], dtype=np.int64)
+    parents = np.array([-1, 0, 1, 2, 2], dtype=np.int64)
+    variables = np.array([-1, 0, 1, -1, 2], dtype=np.int64)
+    axes = np.array([[0, 0, 0], [0.6, 0.0, 0.8], [0, 0, 1], [0, 0, 0], [0.0, 0.6, -0.8]], dtype=float)
+    origins = np.stack(
+        [_rotation(a / np.linalg.norm(a), rng.uniform(-3, 3)) for a in rng.normal(size=(5, 3))]
+    )
+    origins[:, :3, 3] = rng.normal(size=(5, 3))
+    root = origins[0].copy()
+    qs = rng.uniform(-3.0, 3.0, size=(20, 3))
+    poses, frame = np.full((5, 3, 4), np.nan), np.empty((3, 4))
+    sines, cosines = np.empty(3), np.empty(3)
+    for m in range(len(qs)):
+        FOLDED_POSES(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+        expected = [root]
+        expected.append(expected[0] @ origins[1] @ _rotation(axes[1], qs[m, 0]))
+        expected.append(expected[1] @ origins[2] @ _rotation(axes[2], qs[m, 1]))
+        slide = np.eye(4)
+        slide[:3, 3] = axes[4] * qs[m, 2]
+        expected.extend([expected[2], expected[2] @ origins[4] @ slide])
+        for link in (0, 1, 2, 4):
+            assert np.allclose(poses[link], expected[link][:3], atol=1e-12)
+        assert np.all(np.isnan(poses[3]))
 
 
 def test_folded_tree_places_every_sphere_where_the_full_tree_does(
