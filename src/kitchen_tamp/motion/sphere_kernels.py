@@ -97,6 +97,29 @@ def _place_leaf(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
+def _span_near_bound(
+    first: int,
+    last: int,
+    margin: float,
+    radii: FloatArray,
+    world: FloatArray,
+    bound: FloatArray,
+    b: int,
+    bound_radius: float,
+) -> int:
+    """How many spheres of ``first:last`` (centres in the x, y and z rows of ``world``) come within
+    the margin of the sphere ``bound[b]`` of radius ``bound_radius``: one branch-free SIMD pass."""
+    x, y, z = bound[b, 0], bound[b, 1], bound[b, 2]
+    near = 0
+    for signed in range(first, last):
+        s = np.uint64(signed)  # unsigned: no negative-index wraparound, so contiguous lanes
+        dx, dy, dz = world[0, s] - x, world[1, s] - y, world[2, s] - z
+        reach = radii[s] + bound_radius + margin
+        near += (reach > 0.0) & (dx * dx + dy * dy + dz * dz < reach * reach)
+    return near
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _spans_touch(
     first_a: int,
     last_a: int,
@@ -521,9 +544,12 @@ def valid_configurations(
             g, h = group_pairs[k, 0], group_pairs[k, 1]
             if points_apart(group_world, g, group_world, h, group_radii[g] + group_radii[h] + margin):
                 continue
-            for group in (g, h):
+            # Each group's coarse spheres near the other's bound, in one SIMD pass each, before any
+            # sphere is tested against a sphere: bounds overlap far more often than spheres do.
+            coarse_hit = True
+            for near, far in ((g, h), (h, g)):
                 _place_coarse(
-                    group,
+                    near,
                     poses,
                     group_links,
                     group_starts,
@@ -533,7 +559,16 @@ def valid_configurations(
                     coarse_placed,
                     stamp,
                 )
-            coarse_hit = _spans_touch(
+                first, last = group_starts[near], group_stops[near]
+                if (
+                    _span_near_bound(
+                        first, last, margin, sphere_radii, coarse_world, group_world, far, group_radii[far]
+                    )
+                    == 0
+                ):
+                    coarse_hit = False
+                    break
+            coarse_hit = coarse_hit and _spans_touch(
                 group_starts[g],
                 group_stops[g],
                 group_starts[h],
