@@ -62,8 +62,7 @@ from symbolic_process import process_table
 
 from kitchen_tamp.planning import SearchResult, Task, plan, validate_plan
 from kitchen_tamp.planning.grounding import ground
-from kitchen_tamp.planning.loading import clear_domain_cache, domain_model
-from kitchen_tamp.planning.pddl_files import parse_problem
+from kitchen_tamp.planning.loading import clear_domain_cache, domain_model, read_problem
 from kitchen_tamp.planning.schemas import translate_problem
 from kitchen_tamp.planning.search.best_first import greedy_best_first_search
 from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
@@ -188,7 +187,7 @@ def run_ours_once(domain: Path, problem: Path, search: str,
     clear_domain_cache()
     clock = time.process_time
     start = clock()
-    parsed_problem, source = parse_problem(problem)
+    parsed_problem, source, _ = read_problem(problem)
     parsed = clock()
     model = domain_model(domain)
     modelled = clock()

@@ -92,7 +92,7 @@ def _generated_problems() -> dict[str, tuple[str, str]]:
 
 def test_grounding_finds_exactly_the_relaxed_reachable_bindings(tmp_path: Path) -> None:
     from kitchen_tamp.planning.grounding import ground
-    from kitchen_tamp.planning.pddl_files import parse_domain, parse_problem
+    from kitchen_tamp.planning.pddl_files import domain_syntax, parse_domain, parse_problem, problem_syntax
     from kitchen_tamp.planning.schemas import translate
     from tests.planning.brute_force import naive_ground_action_names
     from tests.planning.conftest import SMALL_TASKS
@@ -106,7 +106,8 @@ def test_grounding_finds_exactly_the_relaxed_reachable_bindings(tmp_path: Path) 
     for problem, domain in pairs:
         parsed_domain, dsrc = parse_domain(domain)
         parsed_problem, psrc = parse_problem(problem)
-        lifted = translate(parsed_domain, parsed_problem, dsrc, psrc)
+        lifted = translate(domain_syntax(parsed_domain, dsrc), problem_syntax(parsed_problem, psrc),
+                           dsrc, psrc)
         task = ground(lifted)
         assert {(a.name, a.args) for a in task.actions} == naive_ground_action_names(lifted), problem.name
 

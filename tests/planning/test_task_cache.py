@@ -133,7 +133,9 @@ def test_only_the_most_recently_used_entries_are_kept(
     assert [p.name for p in loads] == ["problem.pddl", "problem_hard.pddl", "blocks_sussman.pddl"]
 
 
-def test_a_warm_run_of_the_planner_imports_neither_lark_nor_pddl(tmp_path: Path) -> None:
+def test_cold_and_warm_runs_of_the_planner_import_neither_lark_nor_pddl(tmp_path: Path) -> None:
+    """The first run reads the kitchen with the fast reader and stores the task; the second
+    loads it from the task cache; neither needs the pddl package."""
     probe = (
         "import sys\n"
         "from kitchen_tamp.cli.activity_planning import main\n"
@@ -142,10 +144,13 @@ def test_a_warm_run_of_the_planner_imports_neither_lark_nor_pddl(tmp_path: Path)
         "print('parser modules:', parser[:3])\n"
         "sys.exit(code)\n")
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}
-    runs = [subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True, text=True, env=env)
-            for _ in range(2)]
-    for run in runs:
+    tasks = tmp_path / "cache" / "kitchen_tamp" / "tasks"
+    stored = []
+    for _ in range(2):
+        run = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True, text=True, env=env)
         assert run.returncode == 0, run.stderr
         assert "7. placeOn spam stove" in run.stdout
-    assert "parser modules: []" not in runs[0].stdout  # cold: parsed
-    assert "parser modules: []" in runs[1].stdout  # warm: from the task cache
+        assert "parser modules: []" in run.stdout
+        stored.append(sorted(p.name for p in tasks.iterdir()))
+    assert len(stored[0]) == 1  # the cold run read the files and stored the task
+    assert stored[1] == stored[0]  # the warm run found it

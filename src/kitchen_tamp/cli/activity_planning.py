@@ -98,7 +98,7 @@ def run(args: PlannerArguments) -> int:
             _print_result(result)
     last = results[-1]
     if plan_out is not None and last.plan is not None:
-        from kitchen_tamp.atomic_files import write_atomically  # tempfile: imported only when writing
+        from kitchen_tamp.atomic_files import write_atomically  # imported only when writing
 
         write_atomically(plan_out, plan_text(last.plan))
     if args.json:

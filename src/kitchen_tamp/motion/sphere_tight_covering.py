@@ -90,16 +90,27 @@ class CoveringReport:
     worst_overshoot: float
 
 
+OUTER_FACES = 1
+"""Faces a cell is first clipped by (see `verify_covering`): one measured fastest (25.5 s for the
+Panda's first three meshes, against 26.1 s with two, 27.5 s with three and 37.7 s before)."""
+UNIT_CUBE_CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+
+
 def _cell_pieces(
-    polytope: ConvexPolytope, planes: tuple[FloatArray, FloatArray], low: FloatArray, size: float
+    polytope: ConvexPolytope, planes: tuple[FloatArray, FloatArray], low: FloatArray, size: float,
+    corners: FloatArray, sides: FloatArray, faces: int | None = None,
 ) -> FloatArray | None:
-    """Vertices of the part of the polytope in the cube at ``low`` with edge ``size`` (None if empty)."""
+    """Vertices of the part of the polytope in the cube at ``low`` with edge ``size`` (None if
+    empty), given the cube's ``corners`` and their signed distances ``sides`` to the faces.
+
+    With ``faces``, the cube is clipped only by that many of the faces cutting it (those its
+    corners lie furthest outside): a piece that holds the true one."""
     normals, offsets = planes
-    corners = low + size * np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
-    sides = corners @ normals.T - offsets[None]
-    if np.any(np.all(sides > _PLANE_EPSILON, axis=0)):
-        return None
     cut = np.flatnonzero(np.any(sides > _PLANE_EPSILON, axis=0))
+    if len(cut) == 0:
+        return corners  # the cube lies inside the polytope: it is the piece
+    if faces is not None:
+        cut = cut[np.argsort(-sides[:, cut].max(axis=0), kind="stable")[:faces]]
     piece: ConvexPolytope | None = box_polytope(np.full(3, size)).transformed(_translation(low + size / 2.0))
     for face in cut:
         if piece is None:
@@ -134,12 +145,29 @@ def verify_covering(
         for k in range(counts[2])
     ]
     cells = grown = 0
+    face_normals, face_offsets = planes
     while stack:
         corner, size, level = stack.pop()
-        piece = _cell_pieces(polytope, planes, corner, size)
-        if piece is None:
-            continue
+        corners = corner + size * UNIT_CUBE_CORNERS
+        sides = corners @ face_normals.T - face_offsets[None]
+        if np.any(np.all(sides > _PLANE_EPSILON, axis=0)):
+            continue  # the cube lies outside a face: no piece
         cells += 1
+        # A ball holding the cube's corners holds the cube, and so the piece: no clipping needed.
+        if np.any(np.max(np.linalg.norm(corners[:, None, :] - centers[None], axis=2), axis=0) <= radii):
+            continue
+        # The cube clipped by its deepest-cutting face alone holds the piece: when a ball holds that,
+        # it holds the piece, at one clip instead of one per cutting face. The verdicts (and so the
+        # spheres) are those of clipping every cell fully; only the work is less.
+        outer = _cell_pieces(polytope, planes, corner, size, corners, sides, faces=OUTER_FACES)
+        if outer is not None and np.any(
+            np.max(np.linalg.norm(outer[:, None, :] - centers[None], axis=2), axis=0) <= radii
+        ):
+            continue
+        piece = _cell_pieces(polytope, planes, corner, size, corners, sides)
+        if piece is None:
+            cells -= 1
+            continue
         needed = np.max(np.linalg.norm(piece[:, None, :] - centers[None], axis=2), axis=0)
         if np.any(needed <= radii):
             continue

@@ -102,7 +102,7 @@ def _load(path: Path, key: str) -> Lark | None:
 
 
 def _store(parser: Lark, path: Path, key: str) -> None:
-    from kitchen_tamp.atomic_files import write_atomically  # imports tempfile: only on a miss
+    from kitchen_tamp.atomic_files import write_atomically  # only on a miss
 
     buffer = io.BytesIO()
     buffer.write(_header(key))

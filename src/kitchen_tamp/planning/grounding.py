@@ -20,8 +20,8 @@ from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from itertools import product, repeat
 from operator import itemgetter, or_
-from typing import NamedTuple
 
+from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.schemas import ActionSchema, LiftedTask
 from kitchen_tamp.planning.task import GroundAction, Task, mask_of
 
@@ -35,7 +35,7 @@ Test = tuple[int, int, bool]
 """Slots ``a`` and ``b`` must hold the same object (True) or different objects (False)."""
 
 
-class _Step(NamedTuple):
+class _Step(FrozenRecord):
     """Matching one precondition literal against one fact's arguments.
 
     ``checks`` are (argument position, slot) pairs whose slot is already bound,
@@ -44,6 +44,9 @@ class _Step(NamedTuple):
     ``lookup`` is the (position, slot) facts are looked up by, or None to scan.
     """
 
+    __slots__ = (  # noqa: RUF023 (the order of __init__)
+        "predicate", "checks", "assigns", "repeats", "tests", "lookup"
+    )
     predicate: str
     checks: tuple[tuple[int, int], ...]
     assigns: tuple[tuple[int, int], ...]
@@ -51,14 +54,26 @@ class _Step(NamedTuple):
     tests: tuple[Test, ...]
     lookup: tuple[int, int] | None
 
+    def __init__(self, predicate: str, checks: tuple[tuple[int, int], ...],
+                 assigns: tuple[tuple[int, int], ...],
+                 repeats: tuple[tuple[int, int], ...], tests: tuple[Test, ...],
+                 lookup: tuple[int, int] | None) -> None:
+        self._set_fields(predicate=predicate, checks=checks, assigns=assigns, repeats=repeats, tests=tests,
+                         lookup=lookup)
 
-class _Trigger(NamedTuple):
+
+class _Trigger(FrozenRecord):
     """How to complete a binding when a new fact matches precondition ``first``."""
 
+    __slots__ = ("schema", "first", "rest", "final_tests")  # noqa: RUF023 (the order of __init__)
     schema: int
     first: _Step
     rest: tuple[_Step, ...]
     final_tests: tuple[Test, ...]
+
+    def __init__(self, schema: int, first: _Step, rest: tuple[_Step, ...],
+                 final_tests: tuple[Test, ...]) -> None:
+        self._set_fields(schema=schema, first=first, rest=rest, final_tests=final_tests)
 
 
 class _CompiledSchema:

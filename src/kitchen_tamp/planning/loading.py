@@ -1,42 +1,93 @@
-"""From PDDL files to a grounded ``Task``: parse, translate, ground; each domain is translated once.
+"""From PDDL files to a grounded ``Task``: read, check, translate, ground; each domain is translated once.
 
-Parsing the domain with the ``pddl`` package is the largest cost of loading a
-small task once its Lark parsers are loaded (see ``grammar_cache``): the
-parser runs in pure Python, ~2 ms for the kitchen domain, and a process often
-loads many problems of one domain (the bilevel planner, the benchmarks, the
-tests). So the checked ``DomainModel`` is kept per
-(path, text): a domain file that has not changed is not parsed again.
+Each file is read by ``strips_text_reader`` when it can (the STRIPS files we
+plan on, in a millisecond or two without importing Lark or the ``pddl``
+package), and otherwise by the ``pddl`` package (``pddl_files``). A file the
+fast reader takes but ``schemas`` finds a mistake in is read again by the
+``pddl`` package, so every error a user sees comes from the package's reading,
+as it did before the fast reader existed.
+
+The checked ``DomainModel`` is kept per (path, text): a process often loads
+many problems of one domain (the bilevel planner, the benchmarks, the tests),
+and a domain file that has not changed is not read again.
 ``clear_domain_cache`` forgets them, e.g. to time cold loads.
 """
 
 from __future__ import annotations
 
+import os
 from functools import lru_cache
-from pathlib import Path
 
+from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.grounding import ground
-from kitchen_tamp.planning.pddl_files import parse_domain_text, parse_problem
-from kitchen_tamp.planning.pddl_paths import read_pddl, resolve_problem_path
-from kitchen_tamp.planning.schemas import DomainModel, translate_problem
-from kitchen_tamp.planning.task import Task
+from kitchen_tamp.planning.pddl_paths import read_pddl, resolve_problem_file
+from kitchen_tamp.planning.pddl_source import PddlSource
+from kitchen_tamp.planning.schemas import DomainModel, LiftedTask, translate_problem
+from kitchen_tamp.planning.strips_text_reader import read_domain_text, read_problem_text
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from kitchen_tamp.planning.pddl_syntax import ProblemSyntax
+    from kitchen_tamp.planning.task import Task
 
 DOMAIN_CACHE_SIZE = 32
 
 
 @lru_cache(maxsize=DOMAIN_CACHE_SIZE)
-def _domain_model(path: Path, text: str) -> DomainModel:
+def _domain_model(path: str | Path, text: str) -> DomainModel:
+    syntax = read_domain_text(text)
+    if syntax is not None:
+        try:
+            return DomainModel(syntax, PddlSource(path, text))
+        except PlanningInputError:
+            pass  # read again below, so that the pddl package's reading words the error
+    from kitchen_tamp.planning.pddl_files import domain_syntax, parse_domain_text  # imports Lark and pddl
+
     domain, source = parse_domain_text(path, text)
-    return DomainModel(domain, source)
+    return DomainModel(domain_syntax(domain, source), source)
 
 
-def domain_model(path: Path) -> DomainModel:
+def domain_model(path: str | Path) -> DomainModel:
     """The checked domain in ``path``, translated once per file content."""
     return _domain_model(path, read_pddl(path, "domain"))
 
 
 def clear_domain_cache() -> None:
-    """Forget every translated domain, so the next load parses its domain again."""
+    """Forget every translated domain, so the next load reads its domain again."""
     _domain_model.cache_clear()
+
+
+def _problem_with_pddl_package(path: str | Path, text: str) -> tuple[ProblemSyntax, PddlSource]:
+    from kitchen_tamp.planning.pddl_files import parse_problem_text, problem_syntax  # imports Lark and pddl
+
+    problem, source = parse_problem_text(path, text)
+    return problem_syntax(problem, source), source
+
+
+def read_problem(path: str | Path) -> tuple[ProblemSyntax, PddlSource, bool]:
+    """The problem's records and text, and whether the fast reader produced them; a syntax
+    error (from the ``pddl`` package) names file, line and column."""
+    text = read_pddl(path, "problem")
+    fast = read_problem_text(text)
+    if fast is not None:
+        return fast, PddlSource(path, text), True
+    return (*_problem_with_pddl_package(path, text), False)
+
+
+def lifted_task(problem_path: str | Path, domain_path: str | Path) -> LiftedTask:
+    """Read and check a problem and its domain: the problem's syntax errors come first, then
+    the domain's, then the names the problem uses."""
+    problem, source, fast = read_problem(problem_path)
+    try:
+        return translate_problem(domain_model(domain_path), problem, source)
+    except PlanningInputError:
+        if not fast:
+            raise
+    # The fast reader took a file with a mistake: the pddl package's reading words the error.
+    problem, source = _problem_with_pddl_package(problem_path, source.text)
+    return translate_problem(domain_model(domain_path), problem, source)
 
 
 def load_task(problem_path: str | Path, domain_path: str | Path | None = None) -> Task:
@@ -47,7 +98,7 @@ def load_task(problem_path: str | Path, domain_path: str | Path | None = None) -
     ``domain.pddl`` beside the problem. Raises ``PlanningInputError`` for any
     problem with the files.
     """
-    problem_file = resolve_problem_path(problem_path)
-    domain_file = Path(domain_path) if domain_path is not None else problem_file.parent / "domain.pddl"
-    problem, psrc = parse_problem(problem_file)
-    return ground(translate_problem(domain_model(domain_file), problem, psrc))
+    problem_file = resolve_problem_file(problem_path)  # strings: the planner's start-up does without pathlib
+    domain_file = (os.fspath(domain_path) if domain_path is not None
+                   else os.path.join(os.path.dirname(problem_file), "domain.pddl"))
+    return ground(lifted_task(problem_file, domain_file))

@@ -48,13 +48,14 @@ def resolve_problem_path(problem: str | Path) -> Path:
     return Path(resolve_problem_file(problem))
 
 
-def read_pddl(path: Path, what: str) -> str:
+def read_pddl(path: str | Path, what: str) -> str:
     """The text of a PDDL file; a missing or unreadable file is an input error naming ``what``."""
-    if not path.exists():
+    if not os.path.exists(path):
         raise PlanningInputError(f"{what} file not found", path)
-    if path.is_dir():
+    if os.path.isdir(path):
         raise PlanningInputError(f"{what} path is a directory, expected a PDDL file", path)
     try:
-        return path.read_text(encoding="utf-8")
+        with open(path, encoding="utf-8") as stream:
+            return stream.read()
     except (OSError, UnicodeDecodeError) as error:
         raise PlanningInputError(f"cannot read {what} file: {error}", path) from error

@@ -54,7 +54,8 @@ MAX_ENTRIES = 32
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 """A task whose entry would be larger is not stored (it is loaded from its files every run)."""
 
-TASK_SOURCES = ("errors.py", "grounding.py", "loading.py", "pddl_files.py", "pddl_paths.py", "schemas.py",
+TASK_SOURCES = ("errors.py", "frozen_record.py", "grounding.py", "loading.py", "pddl_files.py",
+                "pddl_paths.py", "pddl_source.py", "pddl_syntax.py", "schemas.py", "strips_text_reader.py",
                 "task.py", "task_cache.py")
 """Our modules whose code decides what a loaded task is; editing one makes every entry stale."""
 
@@ -180,14 +181,13 @@ def _write_entry(entry: str, key: str, task: Task) -> None:
     data = marshal.dumps((key, encode_task(task)))
     if len(data) > MAX_ENTRY_BYTES:
         return
-    import contextlib  # these three, with tempfile (write_atomically): only on a miss
-    from pathlib import Path
+    from kitchen_tamp.atomic_files import write_file_atomically  # only on a miss
 
-    from kitchen_tamp.atomic_files import write_atomically
-
-    with contextlib.suppress(OSError):  # an unwritable cache directory costs time next run, nothing else
-        write_atomically(Path(entry), data)
+    try:  # an unwritable cache directory costs time next run, nothing else
+        write_file_atomically(entry, data)
         _evict(os.path.dirname(entry))
+    except OSError:
+        pass
 
 
 def _evict(directory: str) -> None:
