@@ -7,9 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
 from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
 from kitchen_tamp.motion.sphere_primitives import (
@@ -22,22 +20,14 @@ from kitchen_tamp.motion.sphere_primitives import (
     joint_sines_cosines,
     place_point,
 )
-from kitchen_tamp.world.scene_description import describe_collision_checker
+from tests.motion import test_sphere_pair_tables
 
 SINES_COSINES: Any = joint_sines_cosines
 FOLDED_POSES: Any = folded_link_poses
 PLACE: Any = place_point
 
-
-@pytest.fixture(scope="module")
-def checkers(kitchen: KitchenScene) -> list[SphereCollisionChecker]:
-    """The free hand, and the hand holding spam as the pick skill grasped it."""
-    built = [SphereCollisionChecker(describe_collision_checker(kitchen.collision_checker()))]
-    with kitchen.scene.preserved():
-        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
-        assert kitchen.held_box() == "spam"
-        built.append(SphereCollisionChecker(describe_collision_checker(kitchen.collision_checker())))
-    return built
+checkers = test_sphere_pair_tables.checkers
+"""The fixture: the free hand, and the hand holding spam as the pick skill grasped it."""
 
 
 def test_sines_and_cosines_are_numpys_to_an_ulp() -> None:

@@ -79,21 +79,22 @@ def _place_span(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _place_leaf(
-    n: int,
-    poses: FloatArray,
-    node_links: npt.NDArray[np.int64],
-    node_first: npt.NDArray[np.int64],
-    node_last: npt.NDArray[np.int64],
-    sphere_local: FloatArray,
-    sphere_world: FloatArray,
-    leaf_placed: npt.NDArray[np.int64],
+def _place_span_once(
+    key: int,
+    placed: npt.NDArray[np.int64],
     stamp: int,
+    poses: FloatArray,
+    link: int,
+    local: FloatArray,
+    world: FloatArray,
+    first: int,
+    last: int,
 ) -> None:
-    """The spheres of leaf ``n`` placed, once per configuration."""
-    if leaf_placed[n] != stamp:
-        _place_span(poses, node_links[n], sphere_local, sphere_world, node_first[n], node_last[n])
-        leaf_placed[n] = stamp
+    """`_place_span`, skipped when ``placed[key]`` shows it done for this configuration's stamp
+    (a tree leaf's spheres, or a group's coarse spheres)."""
+    if placed[key] != stamp:
+        _place_span(poses, link, local, world, first, last)
+        placed[key] = stamp
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -189,8 +190,16 @@ def _tree_hits_box(
         if point_box_gap(node_world, n, box_rotations, box_centers, box_halves, b) - node_radii[n] >= margin:
             continue
         if node_children[n, 0] < 0:
-            _place_leaf(
-                n, poses, node_links, node_first, node_last, sphere_local, sphere_world, leaf_placed, stamp
+            _place_span_once(
+                n,
+                leaf_placed,
+                stamp,
+                poses,
+                node_links[n],
+                sphere_local,
+                sphere_world,
+                node_first[n],
+                node_last[n],
             )
             for s in range(node_first[n], node_last[n]):
                 x, y, z = sphere_world[0, s], sphere_world[1, s], sphere_world[2, s]
@@ -238,16 +247,16 @@ def _trees_touch(
         leaf_a, leaf_b = node_children[a, 0] < 0, node_children[b, 0] < 0
         if leaf_a and leaf_b:
             for leaf in (a, b):
-                _place_leaf(
+                _place_span_once(
                     leaf,
-                    poses,
-                    node_links,
-                    node_first,
-                    node_last,
-                    sphere_local,
-                    sphere_world,
                     leaf_placed,
                     stamp,
+                    poses,
+                    node_links[leaf],
+                    sphere_local,
+                    sphere_world,
+                    node_first[leaf],
+                    node_last[leaf],
                 )
             if _spans_touch(
                 node_first[a],
@@ -272,24 +281,6 @@ def _trees_touch(
                 top += 1
                 stack[2 * top], stack[2 * top + 1] = a, node_children[b, child]
     return False
-
-
-@numba.njit(cache=True, fastmath=True, forceinline=True)
-def _place_coarse(
-    g: int,
-    poses: FloatArray,
-    group_links: npt.NDArray[np.int64],
-    group_starts: npt.NDArray[np.int64],
-    group_stops: npt.NDArray[np.int64],
-    coarse_local: FloatArray,
-    coarse_world: FloatArray,
-    coarse_placed: npt.NDArray[np.int64],
-    stamp: int,
-) -> None:
-    """Group ``g``'s coarse spheres placed (all on its link), once per configuration."""
-    if coarse_placed[g] != stamp:
-        _place_span(poses, group_links[g], coarse_local, coarse_world, group_starts[g], group_stops[g])
-        coarse_placed[g] = stamp
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -484,16 +475,16 @@ def valid_configurations(
                     >= margin
                 ):
                     continue
-                _place_coarse(
+                _place_span_once(
                     g,
-                    poses,
-                    group_links,
-                    group_starts,
-                    group_stops,
-                    coarse_local,
-                    coarse_world,
                     coarse_placed,
                     stamp,
+                    poses,
+                    group_links[g],
+                    coarse_local,
+                    coarse_world,
+                    group_starts[g],
+                    group_stops[g],
                 )
                 coarse_hit = False
                 for s in range(group_starts[g], group_stops[g]):
@@ -548,16 +539,16 @@ def valid_configurations(
             # sphere is tested against a sphere: bounds overlap far more often than spheres do.
             coarse_hit = True
             for near, far in ((g, h), (h, g)):
-                _place_coarse(
+                _place_span_once(
                     near,
-                    poses,
-                    group_links,
-                    group_starts,
-                    group_stops,
-                    coarse_local,
-                    coarse_world,
                     coarse_placed,
                     stamp,
+                    poses,
+                    group_links[near],
+                    coarse_local,
+                    coarse_world,
+                    group_starts[near],
+                    group_stops[near],
                 )
                 first, last = group_starts[near], group_stops[near]
                 if (

@@ -97,8 +97,13 @@ UNIT_CUBE_CORNERS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in
 
 
 def _cell_pieces(
-    polytope: ConvexPolytope, planes: tuple[FloatArray, FloatArray], low: FloatArray, size: float,
-    corners: FloatArray, sides: FloatArray, faces: int | None = None,
+    polytope: ConvexPolytope,
+    planes: tuple[FloatArray, FloatArray],
+    low: FloatArray,
+    size: float,
+    corners: FloatArray,
+    sides: FloatArray,
+    faces: int | None = None,
 ) -> FloatArray | None:
     """Vertices of the part of the polytope in the cube at ``low`` with edge ``size`` (None if
     empty), given the cube's ``corners`` and their signed distances ``sides`` to the faces.
