@@ -17,7 +17,15 @@ Layout (`sphere_kernel_layout`, folded): links in parent-before-child order with
 (`sphere_primitives`: FIXED, REVOLUTE, REVOLUTE_Z, PRISMATIC, or SKIPPED for a fixed
 link folded into its moving ancestor, whose spheres ride on that ancestor), ``axes``
 (L, 3) unit joint axes and ``variables`` (L) column of the configuration (or -1); a
-held joint's motion is folded into its origin. Poses are kept as their top 3x4 rows.
+held joint's motion is folded into its origin. Poses are kept as their top 3x4 rows. The fine
+spheres' centres (``fine_centers``) come as x, y and z rows, so a leaf's spheres are placed and
+tested in SIMD lanes; so are the coarse ones, transposed per call.
+
+Per configuration, in this order (each step cheap next to the ones it saves): joint limits; the
+pair tables' cells (fetched a configuration ahead); kinematics; each group's bound against every
+box's axis-aligned bounds (one branch-free pass per group), and the few boxes that come near at
+the coarse and fine levels; each self pair's bounds, then each group's coarse spheres near the
+other's bound (one pass each), then sphere against sphere, then the fine level.
 """
 
 from __future__ import annotations
