@@ -1,10 +1,12 @@
 """Compiled primitives that the sphere model's kernels share: forward kinematics of a link
 chain and the distances of a point or sphere to a box, a bound or another point.
 
-Used by the validity kernel (`sphere_kernels`) and the clearance kernel (`clearance_kernel`);
-numba inlines them into each, and caches them on disk like the kernels (``cache=True``).
-Link layout as in `sphere_kernels`: ``parents``, ``origins``, ``kinds`` (FIXED, REVOLUTE,
-PRISMATIC), ``axes`` and ``variables``.
+The clearance kernel (`clearance_kernel`) uses the first group (4x4 poses, array rows, inlined by
+numba); the validity kernel (`sphere_kernels`) the second (folded kinematics with 3x4 poses and
+branch-free sines and cosines, arrays with row indices, inlined by LLVM, and `prefetch`). All are
+cached on disk like the kernels (``cache=True``). Link layout as in `sphere_kernels`:
+``parents``, ``origins``, ``kinds`` (FIXED, REVOLUTE, PRISMATIC; the folded layout also
+REVOLUTE_Z and SKIPPED), ``axes`` and ``variables``.
 """
 
 from __future__ import annotations
@@ -73,25 +75,6 @@ def link_poses(
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
-def box_gap(point: FloatArray, rotation: FloatArray, center: FloatArray, half: FloatArray) -> float:
-    """Signed distance from a point to an oriented box (negative inside)."""
-    outside = 0.0
-    deepest = -1e300
-    for axis in range(3):
-        local = 0.0
-        for k in range(3):
-            local += rotation[k, axis] * (point[k] - center[k])
-        excess = abs(local) - half[axis]
-        if excess > 0.0:
-            outside += excess * excess
-        if excess > deepest:
-            deepest = excess
-    if outside > 0.0:
-        return float(np.sqrt(outside))
-    return float(deepest)
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
 def aabb_gap(point: FloatArray, low: FloatArray, high: FloatArray) -> float:
     """Distance from a point to an axis-aligned box (zero inside): a lower bound of the gap to any
     shape inside the box."""
@@ -106,15 +89,6 @@ def aabb_gap(point: FloatArray, low: FloatArray, high: FloatArray) -> float:
 def distance(a: FloatArray, b: FloatArray) -> float:
     dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
     return float(np.sqrt(dx * dx + dy * dy + dz * dz))
-
-
-@numba.njit(cache=True, fastmath=True, inline="always")
-def apart(a: FloatArray, b: FloatArray, reach: float) -> bool:
-    """Whether the points are at least ``reach`` apart (squared distances: no root)."""
-    if reach <= 0.0:
-        return True
-    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
-    return bool(dx * dx + dy * dy + dz * dz >= reach * reach)
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
@@ -272,7 +246,7 @@ def place_point(poses: FloatArray, link: int, local: FloatArray, index: int, wor
 def box_gap_at(
     x: float, y: float, z: float, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
 ) -> float:
-    """``box_gap`` of the point (x, y, z) and box ``b``."""
+    """Signed distance from the point (x, y, z) to box ``b`` (negative inside)."""
     outside = 0.0
     deepest = -1e300
     for axis in range(3):
@@ -295,13 +269,13 @@ def box_gap_at(
 def point_box_gap(
     world: FloatArray, index: int, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
 ) -> float:
-    """``box_gap`` of the point world[index] and box ``b``."""
+    """`box_gap_at` of the point world[index] and box ``b``."""
     return box_gap_at(world[index, 0], world[index, 1], world[index, 2], rotations, centers, halves, b)
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def points_apart(a: FloatArray, i: int, b: FloatArray, j: int, reach: float) -> bool:
-    """``apart`` of the points a[i] and b[j]."""
+    """Whether the points a[i] and b[j] are at least ``reach`` apart (squared distances: no root)."""
     if reach <= 0.0:
         return True
     dx, dy, dz = a[i, 0] - b[j, 0], a[i, 1] - b[j, 1], a[i, 2] - b[j, 2]
