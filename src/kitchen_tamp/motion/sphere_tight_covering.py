@@ -61,12 +61,13 @@ def _candidate_spheres(
 def _greedy_cover(centers: FloatArray, radii: FloatArray, points: FloatArray) -> list[int]:
     """Candidates chosen greedily (most points not yet covered first) until every point is covered
     or no candidate covers another."""
-    covers = np.zeros((len(centers), len(points)), dtype=bool)
-    for start in range(0, len(centers), 1024):
-        chunk = slice(start, start + 1024)
-        squared = np.sum((centers[chunk, None, :] - points[None]) ** 2, axis=2)
-        covers[chunk] = squared <= radii[chunk, None] ** 2
-    counts = np.count_nonzero(covers, axis=1)
+    # Point by candidate, so that the candidates covering the newly covered points are whole rows.
+    covered_by = np.zeros((len(points), len(centers)), dtype=bool)
+    for start in range(0, len(points), 256):
+        chunk = slice(start, start + 256)
+        squared = np.sum((points[chunk, None, :] - centers[None]) ** 2, axis=2)
+        covered_by[chunk] = squared <= radii[None] ** 2
+    counts = np.count_nonzero(covered_by, axis=0)
     uncovered = np.ones(len(points), dtype=bool)
     chosen: list[int] = []
     while uncovered.any():
@@ -74,9 +75,9 @@ def _greedy_cover(centers: FloatArray, radii: FloatArray, points: FloatArray) ->
         if counts[best] == 0:
             break
         chosen.append(best)
-        newly = covers[best] & uncovered
+        newly = covered_by[:, best] & uncovered
         uncovered &= ~newly
-        counts -= np.count_nonzero(covers[:, newly], axis=1)
+        counts -= covered_by[newly].sum(axis=0, dtype=np.int64)
     return chosen
 
 
