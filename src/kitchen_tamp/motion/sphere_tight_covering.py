@@ -125,6 +125,13 @@ def _cell_pieces(
     return None if piece is None else piece.vertices
 
 
+def _farthest_point_distances(points: FloatArray, centers: FloatArray) -> FloatArray:
+    """Per centre, the distance to the farthest of ``points``: the radius a sphere there needs to
+    hold them all."""
+    distances: FloatArray = np.linalg.norm(points[:, None, :] - centers[None], axis=2)
+    return distances.max(axis=0)
+
+
 def _translation(offset: FloatArray) -> FloatArray:
     pose = np.eye(4)
     pose[:3, 3] = offset
@@ -160,21 +167,19 @@ def verify_covering(
             continue  # the cube lies outside a face: no piece
         cells += 1
         # A ball holding the cube's corners holds the cube, and so the piece: no clipping needed.
-        if np.any(np.max(np.linalg.norm(corners[:, None, :] - centers[None], axis=2), axis=0) <= radii):
+        if np.any(_farthest_point_distances(corners, centers) <= radii):
             continue
         # The cube clipped by its deepest-cutting face alone holds the piece: when a ball holds that,
         # it holds the piece, at one clip instead of one per cutting face. The verdicts (and so the
         # spheres) are those of clipping every cell fully; only the work is less.
         outer = _cell_pieces(polytope, planes, corner, size, corners, sides, faces=OUTER_FACES)
-        if outer is not None and np.any(
-            np.max(np.linalg.norm(outer[:, None, :] - centers[None], axis=2), axis=0) <= radii
-        ):
+        if outer is not None and np.any(_farthest_point_distances(outer, centers) <= radii):
             continue
         piece = _cell_pieces(polytope, planes, corner, size, corners, sides)
         if piece is None:
             cells -= 1
             continue
-        needed = np.max(np.linalg.norm(piece[:, None, :] - centers[None], axis=2), axis=0)
+        needed = _farthest_point_distances(piece, centers)
         if np.any(needed <= radii):
             continue
         if level < depth:
