@@ -129,7 +129,8 @@ def _farthest_point_distances(points: FloatArray, centers: FloatArray) -> FloatA
     """Per centre, the distance to the farthest of ``points``: the radius a sphere there needs to
     hold them all."""
     distances: FloatArray = np.linalg.norm(points[:, None, :] - centers[None], axis=2)
-    return distances.max(axis=0)
+    farthest: FloatArray = distances.max(axis=0)
+    return farthest
 
 
 def _translation(offset: FloatArray) -> FloatArray:
