@@ -178,6 +178,8 @@ class _DomainReader:
         """The declared constants, by lowercase name."""
         self.requirements: frozenset[str] = frozenset()
         self.types: dict[str, str | None] = {}
+        self.known_types: set[str] = set()
+        """The types the package knows (declared, or a declared type's parent), in lowercase."""
         self.constants: tuple[TypedName, ...] = ()
         self.predicates: dict[str, int] = {}
         self.parameters: dict[str, str] = {}
@@ -196,6 +198,7 @@ class _DomainReader:
         for name, parent in self.typed(items, _name):
             self.types[name] = None if parent is None or parent.lower() == ROOT_TYPE else parent
         lowered = {name.lower(): (parent.lower() if parent else None) for name, parent in self.types.items()}
+        self.known_types = set(lowered) | {parent for parent in lowered.values() if parent}
         for start in lowered:
             seen = {start}
             current = lowered[start]
@@ -210,19 +213,20 @@ class _DomainReader:
         in a domain: its types drop ``object`` as a parent.)"""
         if type_name is None:
             return
-        known = {name.lower() for name in self.types} | {p.lower() for p in self.types.values() if p}
-        if type_name.lower() not in known:
+        if type_name.lower() not in self.known_types:
             raise Unsupported
 
     def read_predicates(self, items: list[Expression]) -> None:
         if not items:
             raise Unsupported
+        declared: set[str] = set()
         for item in items:
             if not isinstance(item, list) or not item:
                 raise Unsupported
             name = _name(item[0])
-            if name.lower() in {p.lower() for p in self.predicates}:
+            if name.lower() in declared:
                 raise Unsupported
+            declared.add(name.lower())
             parameters = self.typed(item[1:], _variable)
             for _, type_name in parameters:
                 self.check_type_known(type_name)
