@@ -30,7 +30,6 @@ from pddl.parser.problem import ProblemTransformer
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
 from kitchen_tamp.planning.pddl_paths import read_pddl
-from kitchen_tamp.planning.pddl_paths import resolve_problem_path as resolve_problem_path
 from kitchen_tamp.planning.pddl_source import PddlSource
 from kitchen_tamp.planning.pddl_syntax import (
     EQUALITY,

@@ -29,7 +29,12 @@ def is_bare_name(path: str) -> bool:
 
 
 def resolve_problem_file(problem: str | os.PathLike[str]) -> str:
-    """``resolve_problem_path`` as a plain string, for start-up code that does without ``pathlib``."""
+    """The problem file: as given, else a bare name looked up in ``pddl/``; a plain string, for
+    start-up code that does without ``pathlib``.
+
+    This lets ``activity_planning.py problem_hard.pddl`` work from the
+    repository root as well as from inside ``pddl/``.
+    """
     given = os.fspath(problem)
     if os.path.exists(given or ".") or not is_bare_name(given):
         return given
@@ -37,15 +42,6 @@ def resolve_problem_file(problem: str | os.PathLike[str]) -> str:
     return candidate if os.path.exists(candidate) else given
 
 
-def resolve_problem_path(problem: str | Path) -> Path:
-    """The problem file: as given, else a bare name looked up in ``pddl/``.
-
-    This lets ``activity_planning.py problem_hard.pddl`` work from the
-    repository root as well as from inside ``pddl/``.
-    """
-    from pathlib import Path
-
-    return Path(resolve_problem_file(problem))
 
 
 def read_pddl(path: str | Path, what: str) -> str:
