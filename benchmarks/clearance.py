@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_clearance import SphereClearance
-from kitchen_tamp.motion.sphere_scene import SphereScene
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
+from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
 from kitchen_tamp.refinement.refine_action import PLANNING_MARGIN
 from kitchen_tamp.world.scene_description import describe_collision_checker

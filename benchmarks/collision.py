@@ -12,7 +12,7 @@ model's distance queries (for trajectory optimisation) are timed too.
     .venv/bin/python benchmarks/collision.py --sphere-samples 100000   # sphere model vs PyBullet
 
 With ``--sphere-samples N`` it instead checks the sphere model
-(`kitchen_tamp.motion.sphere_checker`) against PyBullet, free-handed and
+(`kitchen_tamp.motion.geometry.spheres.checker`) against PyBullet, free-handed and
 carrying each box the problem has: N uniform configurations and N near-obstacle
 ones (bisected to within ~1 mm of PyBullet's contact between a free and a
 colliding sample). Missed collisions (PyBullet colliding, spheres free) must be
@@ -34,7 +34,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.kitchen import KitchenScene, SkillFailure, load_kitchen_problem, sample_targets
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -138,7 +138,7 @@ def near_obstacle(checker: PyBulletCollisionChecker, count: int, rng: np.random.
 
 
 def sphere_agreement(kitchen: KitchenScene, samples: int, seed: int) -> None:
-    from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 
     rng = np.random.default_rng(seed)
     scenes = {"free hand": kitchen.collision_checker()}

@@ -165,7 +165,7 @@ KITCHEN_PROBLEMS = tuple(
 )
 JUDGE_AGREEMENT_MARGIN = 0.002
 """Clearance (m) our Drake and sphere checkers keep so that their paths pass PyBullet's check (which
-pads each mesh by about 1 mm; see `kitchen_tamp.motion.drake_collision`)."""
+pads each mesh by about 1 mm; see `kitchen_tamp.motion.geometry.drake`)."""
 CHECKER_BACKENDS = ("pybullet", "drake", "spheres", "spheres-only")
 """spheres: the sphere model with Drake deciding what it rejects (as ``--collision-model spheres``
 plans); spheres-only: the sphere model alone (conservative, so it rejects near-contact starts)."""
@@ -174,9 +174,9 @@ plans); spheres-only: the sphere model alone (conservative, so it rejects near-c
 def _kitchen_walk(problem: Path, seed: Sequence[int], backend: str) -> list[MotionQuery]:
     """One free-space query per action of the problem's BFS plan, until a skill fails to sample."""
     from kitchen_tamp.kitchen import SkillFailure, load_kitchen_problem, sample_action_targets
-    from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-    from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-    from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
     from kitchen_tamp.planning.search.registry import plan
     from kitchen_tamp.world.scene_description import describe_collision_checker
 

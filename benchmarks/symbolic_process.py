@@ -19,7 +19,7 @@ the wall time of a bare ``python -c pass`` (the floor every Python planner pays)
 Ours is timed twice per round: ``first``, the first run on these files (the
 task cache emptied before each such run, so it parses, grounds and stores the
 task), and ``repeat``, a run on unchanged files (served from the task cache,
-see ``kitchen_tamp.planning.task_cache``). Both are compared with pyperplan,
+see ``kitchen_tamp.planning.reading.task_cache``). Both are compared with pyperplan,
 which has no cache and pays the same every run.
 
 Pairings (ours / pyperplan / Fast Downward):

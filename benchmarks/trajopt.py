@@ -60,16 +60,16 @@ from kitchen_tamp.motion import (
     check_path_densely,
     path_length,
 )
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
-from kitchen_tamp.motion.trajectory_program import (
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+from kitchen_tamp.motion.trajopt.program import (
     Clearance,
     SignedDistanceFunction,
     TrajectoryOptimizationSettings,
     one_at_a_time,
 )
-from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
+from kitchen_tamp.motion.trajopt.solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     MotionSolution,
     SamplingMotionBackend,

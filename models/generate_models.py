@@ -1,6 +1,6 @@
 """Write a kitchen's URDF files from its scene file (default: the shipped default kitchen).
 
-The kitchen's models are derived from its scene file (``kitchen_tamp.kitchen.scene_models``)
+The kitchen's models are derived from its scene file (``kitchen_tamp.kitchen.scene.models``)
 and written into a cache folder when a kitchen is built, so they never disagree with it. The
 files in this folder are the default kitchen's, for reading; a test checks they match:
 
@@ -14,9 +14,9 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from kitchen_tamp.kitchen.scene_file import SceneFileError, read_scene
-from kitchen_tamp.kitchen.scene_models import write_models
-from kitchen_tamp.kitchens import default_scene_path
+from kitchen_tamp.kitchen.scene.models import write_models
+from kitchen_tamp.kitchen.scene.spec_reader import SceneFileError, read_scene
+from kitchen_tamp.shipped_kitchens import default_scene_path
 
 MODELS_DIR = Path(__file__).resolve().parent
 

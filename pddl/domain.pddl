@@ -1,1 +1,1 @@
-../src/kitchen_tamp/kitchens/default/domain.pddl
+../src/kitchen_tamp/shipped_kitchens/default/domain.pddl

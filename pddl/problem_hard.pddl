@@ -1,1 +1,1 @@
-../src/kitchen_tamp/kitchens/default/problem_hard.pddl
+../src/kitchen_tamp/shipped_kitchens/default/problem_hard.pddl

@@ -92,11 +92,11 @@ def _with_scene(hard_run: Path, folder: Path, scene: Path) -> Path:
 def test_replay_judges_in_the_kitchen_the_run_recorded(
     hard_run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from kitchen_tamp.kitchens import default_scene_path
+    from kitchen_tamp.shipped_kitchens import default_scene_path
 
     recorded = json.loads((hard_run / "trajectory.json").read_text())["scene"]
     assert Path(recorded).resolve() == default_scene_path().resolve()
-    galley = REPO / "src" / "kitchen_tamp" / "kitchens" / "galley" / "scene.toml"
+    galley = REPO / "src" / "kitchen_tamp" / "shipped_kitchens" / "galley" / "scene.toml"
     capsys.readouterr()
     # the galley has no `drawer`: judged there, the problem itself is refused
     assert main(["replay", str(_with_scene(hard_run, tmp_path, galley)), "--no-video"]) == 2
@@ -270,7 +270,8 @@ def test_a_kitchen_model_that_does_not_match_the_map_is_a_setup_error(
 ) -> None:
     from dataclasses import replace
 
-    from kitchen_tamp.kitchen import default_kitchen_map, scene_choice
+    from kitchen_tamp.kitchen import default_kitchen_map
+    from kitchen_tamp.kitchen.scene import choice as scene_choice
 
     kitchen_map = default_kitchen_map()
     urdf = kitchen_map.kitchen_urdf.read_text()
@@ -288,7 +289,7 @@ def test_a_kitchen_model_that_does_not_match_the_map_is_a_setup_error(
 def test_no_nonlinear_solver_is_a_setup_error_found_before_planning(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError
+    from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError
 
     def no_solver() -> None:
         raise NoNonlinearSolverError("Drake has neither SNOPT nor IPOPT available")

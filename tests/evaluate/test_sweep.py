@@ -145,7 +145,7 @@ def test_ray_local_gives_the_same_rows_apart_from_timing(real_sweep: Path, tmp_p
 def test_a_problem_of_another_kitchen_is_swept_with_the_domain_a_run_finds(tmp_path: Path) -> None:
     """The galley ships no domain.pddl of its own: without --domain, the sweep checks its
     problems against the shipped domain, as final_project.py does, instead of refusing them."""
-    galley = Path(__file__).resolve().parents[2] / "src" / "kitchen_tamp" / "kitchens" / "galley"
+    galley = Path(__file__).resolve().parents[2] / "src" / "kitchen_tamp" / "shipped_kitchens" / "galley"
     assert not (galley / "domain.pddl").exists()
     out = tmp_path / "sweep"
     assert main(["--problems", str(galley / "problem_swap.pddl"), "--seeds", "0", "--out", str(out),

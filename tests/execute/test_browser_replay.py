@@ -13,7 +13,7 @@ import pytest
 
 from kitchen_tamp.cli.final_project import main
 from kitchen_tamp.execute import SavedRun, Verification, build_timeline, write_trajectory
-from kitchen_tamp.execute.browser_replay import (
+from kitchen_tamp.execute.render.browser_replay import (
     HTML_FILE,
     MAX_FRAMES,
     MAX_FRAMES_PER_SECOND,
@@ -23,8 +23,8 @@ from kitchen_tamp.execute.browser_replay import (
     replay_frame_rate,
     write_timeline_replay,
 )
-from kitchen_tamp.execute.scene_recording import SceneRecorder, SceneRecording
-from kitchen_tamp.execute.untextured_meshes import untextured_obj_text
+from kitchen_tamp.execute.render.scene_recording import SceneRecorder, SceneRecording
+from kitchen_tamp.execute.render.untextured_meshes import untextured_obj_text
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task

@@ -12,7 +12,7 @@ import pytest
 
 from kitchen_tamp.cli.final_project import main
 from kitchen_tamp.execute import PhysicsExecution, SavedRun, execute_under_physics, write_trajectory
-from kitchen_tamp.execute.physics_execution import FrameCallback
+from kitchen_tamp.execute.physics.execution import FrameCallback
 from kitchen_tamp.kitchen import KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Task, load_task

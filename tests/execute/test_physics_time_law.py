@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from kitchen_tamp.execute.physics_plan import grip_events
-from kitchen_tamp.execute.physics_time_law import TimeLaw, strokes
+from kitchen_tamp.execute.physics.plan import grip_events
+from kitchen_tamp.execute.physics.time_law import TimeLaw, strokes
 
 LIMITS = np.array([2.0, 2.0, 1.0])
 

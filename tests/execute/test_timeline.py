@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from kitchen_tamp.execute import Verification, build_timeline, verify_trajectory
-from kitchen_tamp.execute.replay_video import MIN_FRAMES, frame_times
+from kitchen_tamp.execute.render.replay_video import MIN_FRAMES, frame_times
 from kitchen_tamp.kitchen import abstract_state, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task

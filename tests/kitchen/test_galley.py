@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import abstract_state, build_kitchen_for_task, load_kitchen_map
-from kitchen_tamp.kitchen.regions import box_corners
-from kitchen_tamp.kitchens import default_domain_path, kitchen_folder
+from kitchen_tamp.kitchen.scene.regions import box_corners
 from kitchen_tamp.planning import load_task, plan
+from kitchen_tamp.shipped_kitchens import default_domain_path, kitchen_folder
 
 GALLEY = kitchen_folder("galley")
 PROBLEMS = sorted(GALLEY.glob("*.pddl"))

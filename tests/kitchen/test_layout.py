@@ -14,7 +14,7 @@ from kitchen_tamp.kitchen import (
     abstract_state,
     build_kitchen,
 )
-from kitchen_tamp.kitchen.regions import box_corners
+from kitchen_tamp.kitchen.scene.regions import box_corners
 from tests.kitchen.conftest import LAYOUT_PROBLEMS, PROBLEMS, task_of
 
 OBJECTS = {"stove": "surface", "countertop": "surface", "drawer": "openable", "sugar": "box", "spam": "box"}

@@ -11,11 +11,16 @@ from typing import Any
 import pytest
 
 from kitchen_tamp.kitchen import abstract_state, build_kitchen_for_task, default_kitchen_map, load_kitchen_map
-from kitchen_tamp.kitchen.scene_file import parse_scene, read_scene
-from kitchen_tamp.kitchen.scene_models import BoxPart, cabinet_parts, model_files, model_texts
-from kitchen_tamp.kitchen.scene_spec import KitchenSpec
-from kitchen_tamp.kitchens import default_domain_path, default_scene_path, kitchen_folder, shipped_kitchens
+from kitchen_tamp.kitchen.scene.models import BoxPart, cabinet_parts, model_files, model_texts
+from kitchen_tamp.kitchen.scene.spec import KitchenSpec
+from kitchen_tamp.kitchen.scene.spec_reader import parse_scene, read_scene
 from kitchen_tamp.planning import load_task
+from kitchen_tamp.shipped_kitchens import (
+    default_domain_path,
+    default_scene_path,
+    kitchen_folder,
+    shipped_kitchens,
+)
 from tests.kitchen.conftest import REPO
 
 

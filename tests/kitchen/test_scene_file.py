@@ -13,8 +13,8 @@ import pytest
 
 from kitchen_tamp.cli.final_project import main as final_project_main
 from kitchen_tamp.kitchen.__main__ import main as kitchen_main
-from kitchen_tamp.kitchen.scene_file import SceneFileError, parse_scene, read_scene
-from kitchen_tamp.kitchens import default_scene_path
+from kitchen_tamp.kitchen.scene.spec_reader import SceneFileError, parse_scene, read_scene
+from kitchen_tamp.shipped_kitchens import default_scene_path
 from tests.kitchen.conftest import PROBLEMS, REPO
 
 SCENE = Path("my_kitchen.toml")

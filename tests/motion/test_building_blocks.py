@@ -20,7 +20,7 @@ from kitchen_tamp.motion import (
     planner_named,
     resample_path,
 )
-from kitchen_tamp.motion.configuration_tree import ConfigurationTree
+from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
 from tests.motion.toy_worlds import BoxBallWorld
 
 WALL = BoxBallWorld(boxes=[((0.45, 0.0), (0.55, 1.0))])

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.trajectory_program import ClearanceConstraint, one_at_a_time
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.trajopt.program import ClearanceConstraint, one_at_a_time
 from kitchen_tamp.world import (
     AllowedContact,
     Pose,

@@ -20,7 +20,7 @@ from kitchen_tamp.motion import (
     prune_waypoints,
     shortcut_path,
 )
-from kitchen_tamp.motion.shortcut import _piece_known_free, connect_furthest_vertices
+from kitchen_tamp.motion.sampling.shortcut import _piece_known_free, connect_furthest_vertices
 from tests.motion.toy_worlds import BoxBallWorld, assert_valid_path
 
 START = np.array([0.1, 0.1])

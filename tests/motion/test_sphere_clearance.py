@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
-from kitchen_tamp.motion.clearance_kernel import HINGE_AT_FLOOR
-from kitchen_tamp.motion.sphere_clearance import SphereClearance
-from kitchen_tamp.motion.sphere_distances import pair_distances
-from kitchen_tamp.motion.sphere_scene import SphereScene
+from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
+from kitchen_tamp.motion.geometry.spheres.distances import pair_distances
+from kitchen_tamp.motion.geometry.spheres.kernels.clearance import HINGE_AT_FLOOR
+from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 MARGIN, WIDTH = 0.005, 0.01

@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
-from kitchen_tamp.motion.sphere_primitives import (
+from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     FIXED,
     PRISMATIC,
     REVOLUTE,

@@ -11,9 +11,9 @@ import pybullet as p
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_covering import (
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.covering import (
     SphereSet,
     box_polytope,
     cover_with_spheres,
@@ -21,14 +21,14 @@ from kitchen_tamp.motion.sphere_covering import (
     overshoot,
     sample_polytope,
 )
-from kitchen_tamp.motion.sphere_scene import _covered_shape, shape_polytope
-from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
-from kitchen_tamp.motion.sphere_tight_covering import (
+from kitchen_tamp.motion.geometry.spheres.scene import _covered_shape, shape_polytope
+from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+from kitchen_tamp.motion.geometry.spheres.tight_covering import (
     TIGHT_COVERING_TOLERANCE,
     cover_tightly,
     verify_covering,
 )
-from kitchen_tamp.motion.sphere_urdf import read_urdf
+from kitchen_tamp.motion.geometry.urdf import read_urdf
 from kitchen_tamp.world import PyBulletCollisionChecker, panda_urdf_path
 from kitchen_tamp.world.scene_description import describe_collision_checker
 

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_kernel_layout import kernel_arguments
-from kitchen_tamp.motion.sphere_kernels import valid_configurations
-from kitchen_tamp.motion.sphere_pair_tables import PairTables, pair_tables
+from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
+from kitchen_tamp.motion.geometry.spheres.pair_tables import PairTables, pair_tables
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
 KERNEL: Any = valid_configurations

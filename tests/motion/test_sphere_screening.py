@@ -10,12 +10,12 @@ import pytest
 from kitchen_tamp.kitchen import KitchenScene
 from kitchen_tamp.motion import CountingSegmentChecker
 from kitchen_tamp.motion.collision_checker import JointConfigurations, ValidityMask
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
-from kitchen_tamp.motion.sphere_covering import SphereSet, covering_slack, sample_polytope
-from kitchen_tamp.motion.sphere_scene import PYBULLET_MESH_MARGIN, shape_polytope
-from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
-from kitchen_tamp.motion.sphere_urdf import read_urdf
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.covering import SphereSet, covering_slack, sample_polytope
+from kitchen_tamp.motion.geometry.spheres.scene import PYBULLET_MESH_MARGIN, shape_polytope
+from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+from kitchen_tamp.motion.geometry.urdf import read_urdf
 from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 

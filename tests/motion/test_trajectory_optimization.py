@@ -11,12 +11,12 @@ from kitchen_tamp.motion import (
     plan_rrt_connect,
 )
 from kitchen_tamp.motion.path_verification import check_path_densely
-from kitchen_tamp.motion.trajectory_program import (
+from kitchen_tamp.motion.trajopt.program import (
     TrajectoryOptimizationSettings,
     build_trajectory_program,
     one_at_a_time,
 )
-from kitchen_tamp.motion.trajectory_solver import (
+from kitchen_tamp.motion.trajopt.solver import (
     nonlinear_solver,
     optimize_trajectory,
     reconstruct_trajectory,

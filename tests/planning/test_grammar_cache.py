@@ -13,8 +13,8 @@ from pddl.core import Domain, Problem
 from pddl.parser.domain import DomainParser, DomainTransformer
 from pddl.parser.problem import ProblemParser, ProblemTransformer
 
-from kitchen_tamp.planning import grammar_cache
-from kitchen_tamp.planning.grammar_cache import StartSymbol, parse_with, pddl_parser
+from kitchen_tamp.planning.reading import grammar_cache
+from kitchen_tamp.planning.reading.grammar_cache import StartSymbol, parse_with, pddl_parser
 from kitchen_tamp.user_cache import cache_directory
 from tests.planning.conftest import KITCHEN
 

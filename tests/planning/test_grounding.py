@@ -92,7 +92,12 @@ def _generated_problems() -> dict[str, tuple[str, str]]:
 
 def test_grounding_finds_exactly_the_relaxed_reachable_bindings(tmp_path: Path) -> None:
     from kitchen_tamp.planning.grounding import ground
-    from kitchen_tamp.planning.pddl_files import domain_syntax, parse_domain, parse_problem, problem_syntax
+    from kitchen_tamp.planning.reading.package_reader import (
+        domain_syntax,
+        parse_domain,
+        parse_problem,
+        problem_syntax,
+    )
     from kitchen_tamp.planning.schemas import translate
     from tests.planning.brute_force import naive_ground_action_names
     from tests.planning.conftest import SMALL_TASKS

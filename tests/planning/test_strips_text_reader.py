@@ -20,19 +20,19 @@ import pytest
 
 from kitchen_tamp.planning import loading
 from kitchen_tamp.planning.errors import PlanningInputError
-from kitchen_tamp.planning.pddl_files import (
+from kitchen_tamp.planning.reading.package_reader import (
     domain_syntax,
     parse_domain_text,
     parse_problem_text,
     problem_syntax,
 )
-from kitchen_tamp.planning.pddl_syntax import DomainSyntax, ProblemSyntax
-from kitchen_tamp.planning.strips_text_reader import read_domain_text, read_problem_text
+from kitchen_tamp.planning.reading.strips_text_reader import read_domain_text, read_problem_text
+from kitchen_tamp.planning.reading.syntax import DomainSyntax, ProblemSyntax
 from kitchen_tamp.planning.task import Task
 from tests.planning.conftest import DATA, KITCHEN, REPO
 
 if TYPE_CHECKING:
-    from kitchen_tamp.planning.pddl_syntax import SyntaxLiteral
+    from kitchen_tamp.planning.reading.syntax import SyntaxLiteral
 
 IPC = REPO / "benchmarks" / "ipc"
 

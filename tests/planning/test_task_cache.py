@@ -9,8 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from kitchen_tamp.planning import PlanningInputError, Task, load_task, task_cache
-from kitchen_tamp.planning.task_cache import ENTRY_SUFFIX, load_task_cached, task_cache_directory
+from kitchen_tamp.planning import PlanningInputError, Task, load_task
+from kitchen_tamp.planning.reading import task_cache
+from kitchen_tamp.planning.reading.task_cache import ENTRY_SUFFIX, load_task_cached, task_cache_directory
 from tests.planning.conftest import DATA, KITCHEN, REPO, SMALL_TASKS
 
 

@@ -9,8 +9,8 @@ from kitchen_tamp.cli import ExitCode, exit_code_of
 from kitchen_tamp.cli.output_paths import OutputPathError, check_output_file
 from kitchen_tamp.cli.planner_arguments import PlannerArguments, read_planner_arguments
 from kitchen_tamp.planning.errors import PlanningInputError
+from kitchen_tamp.planning.reading.task_cache import load_task_cached
 from kitchen_tamp.planning.search.registry import SEARCH_DESCRIPTIONS, SEARCHES, plan
-from kitchen_tamp.planning.task_cache import load_task_cached
 from kitchen_tamp.planning.validation import plan_text, validate_plan
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
@@ -74,7 +74,11 @@ def run(args: PlannerArguments) -> int:
         plan_out = Path(args.plan_out)
         check_output_file(plan_out, "--plan-out")
     started = time.perf_counter()
-    from kitchen_tamp.kitchens import DEFAULT_PROBLEM, domain_file_for, find_problem_file  # start-up cost
+    from kitchen_tamp.shipped_kitchens import (  # start-up cost
+        DEFAULT_PROBLEM,
+        domain_file_for,
+        find_problem_file,
+    )
 
     problem = find_problem_file(args.problem or DEFAULT_PROBLEM)
     task = load_task_cached(problem, args.domain if args.domain else domain_file_for(problem))

@@ -34,12 +34,16 @@ from kitchen_tamp.execute import (
     write_gif,
     write_trajectory,
 )
-from kitchen_tamp.execute.browser_replay import HTML_FILE, LiveViewer, RolloutRecorder, write_timeline_replay
-from kitchen_tamp.execute.physics_replanning import Replanner
+from kitchen_tamp.execute.physics.replanning import Replanner
+from kitchen_tamp.execute.render.browser_replay import (
+    HTML_FILE,
+    LiveViewer,
+    RolloutRecorder,
+    write_timeline_replay,
+)
 from kitchen_tamp.kitchen import KitchenError, KitchenMap, KitchenScene, build_kitchen_for_task
-from kitchen_tamp.kitchen.scene_choice import choose_scene
-from kitchen_tamp.kitchens import DEFAULT_PROBLEM
-from kitchen_tamp.motion.trajectory_solver import NoNonlinearSolverError, nonlinear_solver
+from kitchen_tamp.kitchen.scene.choice import choose_scene
+from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
@@ -51,6 +55,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
 )
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
+from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.world import UnknownNameError, WorldError
 
 SYMBOLIC_PLANNER = "bfs"

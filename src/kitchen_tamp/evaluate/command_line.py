@@ -37,8 +37,8 @@ from kitchen_tamp.evaluate.results_table import RESULTS_FILE, ResultsTableError
 from kitchen_tamp.evaluate.summary import write_summary
 from kitchen_tamp.evaluate.sweep import RUNS_DIR, SweepPlan, run_sweep
 from kitchen_tamp.evaluate.task_run import RunSettings, default_run_command
-from kitchen_tamp.kitchens import default_domain_path, domain_for, find_problem, kitchen_folder
 from kitchen_tamp.planning import PlanningInputError, load_task
+from kitchen_tamp.shipped_kitchens import default_domain_path, domain_for, find_problem, kitchen_folder
 
 DEFAULT_OUT = Path("out") / "evaluate"
 DEFAULT_TIMEOUT_S = 600.0

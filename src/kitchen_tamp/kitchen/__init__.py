@@ -18,17 +18,17 @@ from kitchen_tamp.kitchen.errors import (
     UnknownObjectError,
     UnsupportedInitialStateError,
 )
-from kitchen_tamp.kitchen.grasps import Grasp
-from kitchen_tamp.kitchen.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
-from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.kitchen.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
-from kitchen_tamp.kitchen.parameters import DEFAULT_PARAMETERS, SkillParameters
-from kitchen_tamp.kitchen.placements import Placement
-from kitchen_tamp.kitchen.regions import SupportRegion
-from kitchen_tamp.kitchen.scene_file import SceneFileError
+from kitchen_tamp.kitchen.scene.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
+from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.scene.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
+from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.kitchen.scene.spec_reader import SceneFileError
 from kitchen_tamp.kitchen.segment import Segment
-from kitchen_tamp.kitchen.skills import SKILLS, sample_action_targets, sample_targets
-from kitchen_tamp.kitchen.targets import SkillTargets
+from kitchen_tamp.kitchen.skills.grasps import Grasp
+from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS, SkillParameters
+from kitchen_tamp.kitchen.skills.placements import Placement
+from kitchen_tamp.kitchen.skills.registry import SKILLS, sample_action_targets, sample_targets
+from kitchen_tamp.kitchen.skills.targets import SkillTargets
 
 __all__ = [
     "CONTACT_PENETRATION_BOUND",

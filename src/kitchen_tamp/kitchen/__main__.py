@@ -19,12 +19,12 @@ from kitchen_tamp.kitchen.errors import (
     UnknownObjectError,
     UnsupportedInitialStateError,
 )
-from kitchen_tamp.kitchen.layout import build_kitchen_for_task
-from kitchen_tamp.kitchen.scene_choice import SceneChoice, choose_scene
-from kitchen_tamp.kitchen.scene_file import SceneFileError
+from kitchen_tamp.kitchen.scene.choice import SceneChoice, choose_scene
+from kitchen_tamp.kitchen.scene.layout import build_kitchen_for_task
+from kitchen_tamp.kitchen.scene.spec_reader import SceneFileError
 from kitchen_tamp.kitchen.show import render_scene, render_skill_frames
-from kitchen_tamp.kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.planning import PlanningInputError, load_task, plan
+from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
 from kitchen_tamp.world import tile, write_png
 
 

@@ -14,8 +14,8 @@ from typing import Final
 import numpy as np
 
 from kitchen_tamp.kitchen.errors import InitialStateMismatchError
-from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.kitchen.regions import SupportRegion, box_corners
+from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners
 from kitchen_tamp.planning import Atom, atom_text
 
 RESTING_GAP: Final = 0.001

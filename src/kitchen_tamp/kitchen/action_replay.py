@@ -35,7 +35,7 @@ import numpy as np
 
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.kitchen.contact_policy import finger_distance, fingers_holding, intended_contacts
-from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples, interpolate_segment
 from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
 

@@ -6,9 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kitchen_tamp.kitchen.kitchen_scene import KitchenScene
-from kitchen_tamp.kitchen.skills import GroundedAction, sample_action_targets
-from kitchen_tamp.kitchen.targets import SkillTargets
+from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.skills.registry import GroundedAction, sample_action_targets
+from kitchen_tamp.kitchen.skills.targets import SkillTargets
 from kitchen_tamp.world import CameraView, Image, render
 
 

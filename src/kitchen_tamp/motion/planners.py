@@ -11,8 +11,8 @@ import numpy.typing as npt
 from kitchen_tamp.motion.collision_checker import CollisionChecker
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.planning_result import PlanningResult
-from kitchen_tamp.motion.rrt import plan_rrt
-from kitchen_tamp.motion.rrt_connect import plan_rrt_connect
+from kitchen_tamp.motion.sampling.rrt import plan_rrt
+from kitchen_tamp.motion.sampling.rrt_connect import plan_rrt_connect
 
 
 class MotionPlanner(Protocol):

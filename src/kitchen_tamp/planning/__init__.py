@@ -6,7 +6,7 @@ Typical use::
     result = plan(task, "astar")
     assert validate_plan(task, result.plan).valid
 
-Names are imported on first use (PEP 562), so ``import kitchen_tamp.planning.task_cache``
+Names are imported on first use (PEP 562), so ``import kitchen_tamp.planning.reading.task_cache``
 and the command line pay only for the modules a run needs; in particular a run
 served from the task cache never imports Lark or the ``pddl`` package.
 """

@@ -20,16 +20,16 @@ from functools import lru_cache
 
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.grounding import ground
-from kitchen_tamp.planning.pddl_paths import read_pddl, resolve_problem_file
-from kitchen_tamp.planning.pddl_source import PddlSource
+from kitchen_tamp.planning.reading.paths import read_pddl, resolve_problem_file
+from kitchen_tamp.planning.reading.source import PddlSource
+from kitchen_tamp.planning.reading.strips_text_reader import read_domain_text, read_problem_text
 from kitchen_tamp.planning.schemas import DomainModel, LiftedTask, translate_problem
-from kitchen_tamp.planning.strips_text_reader import read_domain_text, read_problem_text
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
     from pathlib import Path
 
-    from kitchen_tamp.planning.pddl_syntax import ProblemSyntax
+    from kitchen_tamp.planning.reading.syntax import ProblemSyntax
     from kitchen_tamp.planning.task import Task
 
 DOMAIN_CACHE_SIZE = 32
@@ -43,7 +43,10 @@ def _domain_model(path: str | Path, text: str) -> DomainModel:
             return DomainModel(syntax, PddlSource(path, text))
         except PlanningInputError:
             pass  # read again below, so that the pddl package's reading words the error
-    from kitchen_tamp.planning.pddl_files import domain_syntax, parse_domain_text  # imports Lark and pddl
+    from kitchen_tamp.planning.reading.package_reader import (  # imports Lark and pddl
+        domain_syntax,
+        parse_domain_text,
+    )
 
     domain, source = parse_domain_text(path, text)
     return DomainModel(domain_syntax(domain, source), source)
@@ -60,7 +63,10 @@ def clear_domain_cache() -> None:
 
 
 def _problem_with_pddl_package(path: str | Path, text: str) -> tuple[ProblemSyntax, PddlSource]:
-    from kitchen_tamp.planning.pddl_files import parse_problem_text, problem_syntax  # imports Lark and pddl
+    from kitchen_tamp.planning.reading.package_reader import (  # imports Lark and pddl
+        parse_problem_text,
+        problem_syntax,
+    )
 
     problem, source = parse_problem_text(path, text)
     return problem_syntax(problem, source), source

@@ -18,14 +18,14 @@ problem's objects, facts and goal.
 from __future__ import annotations
 
 from kitchen_tamp.planning.frozen_record import FrozenRecord
-from kitchen_tamp.planning.pddl_syntax import EQUALITY, ROOT_TYPE
+from kitchen_tamp.planning.reading.syntax import EQUALITY, ROOT_TYPE
 
 TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping
 
-    from kitchen_tamp.planning.pddl_source import PddlSource
-    from kitchen_tamp.planning.pddl_syntax import ActionSyntax, DomainSyntax, ProblemSyntax, SyntaxLiteral
+    from kitchen_tamp.planning.reading.source import PddlSource
+    from kitchen_tamp.planning.reading.syntax import ActionSyntax, DomainSyntax, ProblemSyntax, SyntaxLiteral
     from kitchen_tamp.planning.task import Atom
 
 Literal = tuple[str, tuple[str, ...]]

@@ -1,7 +1,7 @@
 """Trajectory optimisation as a motion back end (``final_project.py optimizes``).
 
 Each free-space move is solved by the Drake program of
-``kitchen_tamp.motion.trajectory_program``: N joint waypoints, shortest squared
+``kitchen_tamp.motion.trajopt.program``: N joint waypoints, shortest squared
 path, start/goal equalities, joint limits, a bound on each step and a clearance
 of at least the margin at every interior waypoint and at points between
 waypoints. An RRT-Connect + shortcut path for the same move is planned first
@@ -36,8 +36,8 @@ from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import ConfigurationSpace, InvalidMotionQueryError, check_path_densely, path_length
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.trajectory_program import Clearance, TrajectoryOptimizationSettings, one_at_a_time
-from kitchen_tamp.motion.trajectory_solver import nonlinear_solver, optimize_trajectory
+from kitchen_tamp.motion.trajopt.program import Clearance, TrajectoryOptimizationSettings, one_at_a_time
+from kitchen_tamp.motion.trajopt.solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     BoundedCollisionChecker,
     Figure,
@@ -252,6 +252,6 @@ def _sphere_clearance(
     if model is None:
         return None
     # imported here: numba loads only when the sphere model is used
-    from kitchen_tamp.motion.sphere_clearance import SphereClearance
+    from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
 
     return SphereClearance(model, margin, ends=ends)

@@ -5,8 +5,8 @@ carries, where the drawer is) and keep ``margin`` metres of clearance. PyBullet
 stays the simulator and the verifier whichever is chosen: every planned path is
 re-checked with the skill's own PyBullet checker before it is accepted.
 
-``spheres`` is the conservative sphere model (`kitchen_tamp.motion.sphere_checker`)
-in front of Drake's (`kitchen_tamp.motion.sphere_screening`): what the spheres
+``spheres`` is the conservative sphere model (`kitchen_tamp.motion.geometry.spheres.checker`)
+in front of Drake's (`kitchen_tamp.motion.geometry.spheres.screening`): what the spheres
 find free is free (they cover the links), what they reject Drake decides, so
 verdicts are Drake's and most configurations never reach Drake. The same
 spheres, at the PyBullet checker's margin, screen the dense post-check of the
@@ -19,8 +19,8 @@ from types import MappingProxyType
 
 from kitchen_tamp.kitchen import KitchenScene, SkillTargets
 from kitchen_tamp.motion.collision_checker import CollisionChecker
-from kitchen_tamp.motion.drake_collision import DrakeCollisionChecker
-from kitchen_tamp.motion.sphere_screening import SphereScreenedChecker
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
 from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -45,7 +45,7 @@ def planning_checker(
         if model == "drake":
             return drake
         # imported here: numba loads only when the sphere model is used
-        from kitchen_tamp.motion.sphere_checker import SphereCollisionChecker
+        from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 
         spheres = SphereCollisionChecker(description, margin=margin)
         return SphereScreenedChecker(spheres, drake, exact_is_bare=True)

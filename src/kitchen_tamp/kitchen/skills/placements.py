@@ -1,0 +1,82 @@
+"""Stable placements of a box in a support region, sampled from geometry."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from kitchen_tamp.kitchen.abstraction import RESTING_GAP
+from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.world import FloatArray, Pose, rotation_about_axis
+
+
+@dataclass(frozen=True)
+class Placement:
+    """A resting pose of a box: one face down on the region, inside it."""
+
+    region: str
+    world_from_box: Pose
+    down_axis: int
+    down_sign: int
+
+
+def resting_rotation(down_axis: int, down_sign: int, yaw: float) -> FloatArray:
+    """region_from_box rotation that puts the box face ``down_sign * axis`` down, turned by yaw."""
+    down = down_sign * np.eye(3)[down_axis]
+    target = np.array([0.0, 0.0, -1.0])
+    axis = np.cross(down, target)
+    if np.linalg.norm(axis) < 1e-9:
+        tilt = np.eye(3) if np.dot(down, target) > 0 else rotation_about_axis([1.0, 0.0, 0.0], np.pi)
+    else:
+        tilt = rotation_about_axis(axis, float(np.arccos(np.clip(np.dot(down, target), -1.0, 1.0))))
+    return rotation_about_axis([0.0, 0.0, 1.0], yaw) @ tilt
+
+
+def sample_placement(
+    region: SupportRegion,
+    size: tuple[float, float, float],
+    rng: np.random.Generator,
+    preferred_down: Sequence[tuple[tuple[int, int], float]],
+) -> Placement | None:
+    """A random stable pose of a box inside ``region``, or None if it cannot fit.
+
+    ``preferred_down`` lists box faces (axis, sign) to put down with their
+    probabilities; with the remaining probability any of the six faces is
+    chosen. Position and yaw are uniform over the poses whose footprint lies
+    inside the region.
+    """
+    draw = rng.random()
+    face = None
+    for candidate, probability in preferred_down:
+        if draw < probability:
+            face = candidate
+            break
+        draw -= probability
+    if face is None:
+        face = (int(rng.integers(3)), int(rng.choice([-1, 1])))
+    down_axis, down_sign = face
+    yaw = rng.uniform(0.0, 2.0 * np.pi)
+    region_from_box_rotation = resting_rotation(down_axis, down_sign, yaw)
+    half_extents = np.abs(region_from_box_rotation) @ (np.array(size) / 2.0)
+    hx, hy = region.half_size
+    room = np.array([hx - half_extents[0], hy - half_extents[1]])
+    if np.any(room < 0.0):
+        return None
+    local = np.array(
+        [rng.uniform(-room[0], room[0]), rng.uniform(-room[1], room[1]), half_extents[2] + RESTING_GAP]
+    )
+    region_from_box = Pose.from_rotation(local, region_from_box_rotation)
+    return Placement(region.name, region.world_from_region @ region_from_box, down_axis, down_sign)
+
+
+def down_face(world_from_box: Pose) -> tuple[int, int]:
+    """(axis, sign) of the box face that points most downwards."""
+    return face_along(world_from_box.rotation.T @ np.array([0.0, 0.0, -1.0]))
+
+
+def face_along(direction_in_box: FloatArray) -> tuple[int, int]:
+    """(axis, sign) of the box face whose normal is closest to a box-frame direction."""
+    axis = int(np.argmax(np.abs(direction_in_box)))
+    return axis, int(np.sign(direction_in_box[axis]))

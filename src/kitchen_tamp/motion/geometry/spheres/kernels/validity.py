@@ -1,0 +1,372 @@
+"""The compiled validity kernel of the sphere model: per configuration, forward kinematics, then
+each checked pair at two levels, stopping at the first pair closer than the margin.
+
+The coarse level (a few spheres per link behind one bound per group) clears most pairs; a pair
+it cannot clear is opened at the fine level, the tight covering of `sphere_tight_covering` held
+in a binary tree of bounding spheres per group (laid out by `sphere_kernel_layout`, searched
+by `sphere_tree_walks`).
+
+Compiled by numba on first use and cached on disk (``cache=True``: beside this
+file, or where ``NUMBA_CACHE_DIR`` points), so a cold start loads it instead
+of compiling again. Arrays only. The helpers are inlined by LLVM (``forceinline``),
+not by numba (``inline="always"``), and take arrays with row indices, never rows:
+numba counts references to every array a numba-inlined call or a row view touches,
+atomically, and in these loops that cost more than the geometry.
+
+Layout (`sphere_kernel_layout`, folded): links in parent-before-child order with
+``parents`` (-1 for the root), ``origins`` (L, 4, 4) joint origins, ``kinds``
+(`sphere_primitives`: FIXED, REVOLUTE, REVOLUTE_Z, PRISMATIC, or SKIPPED for a fixed
+link folded into its moving ancestor, whose spheres ride on that ancestor), ``axes``
+(L, 3) unit joint axes and ``variables`` (L) column of the configuration (or -1); a
+held joint's motion is folded into its origin. Poses are kept as their top 3x4 rows. The fine
+spheres' centres (``fine_centers``) come as x, y and z rows, so a leaf's spheres are placed and
+tested in SIMD lanes; so are the coarse ones, transposed per call.
+
+Per configuration, in this order (each step cheap next to the ones it saves): joint limits; the
+pair tables' cells (fetched a configuration ahead); kinematics; each group's bound against every
+box's axis-aligned bounds (one branch-free pass per group), and the few boxes that come near at
+the coarse and fine levels; each self pair's bounds, then each group's coarse spheres near the
+other's bound (one pass each), then sphere against sphere, then the fine level.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
+    box_gap_at,
+    folded_link_poses,
+    place_point,
+    point_box_gap,
+    points_apart,
+    prefetch,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import (
+    STACK_DEPTH,
+    place_span_once,
+    span_near_bound,
+    spans_touch,
+    tree_hits_box,
+    trees_touch,
+)
+
+FloatArray = npt.NDArray[np.float64]
+
+
+_FAR = 1e300
+"""Larger than any squared gap in metres."""
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _boxes_near(
+    x: float,
+    y: float,
+    z: float,
+    reach_squared: float,
+    low_x: FloatArray,
+    low_y: FloatArray,
+    low_z: FloatArray,
+    high_x: FloatArray,
+    high_y: FloatArray,
+    high_z: FloatArray,
+) -> int:
+    """How many boxes' axis-aligned bounds come within ``reach`` of the point (x, y, z) (branch-free
+    over contiguous arrays, so the loop runs in SIMD lanes)."""
+    near = 0
+    for b in range(low_x.shape[0]):
+        ex = max(low_x[b] - x, x - high_x[b], 0.0)
+        ey = max(low_y[b] - y, y - high_y[b], 0.0)
+        ez = max(low_z[b] - z, z - high_z[b], 0.0)
+        near += ex * ex + ey * ey + ez * ez < reach_squared
+    return near
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _table_cell(
+    qs: FloatArray,
+    m: int,
+    t: int,
+    variables: npt.NDArray[np.int64],
+    lows: FloatArray,
+    steps: FloatArray,
+    counts: npt.NDArray[np.int64],
+) -> int:
+    """Row-major index in table ``t`` of the cell holding ``qs[m]``'s two joint values (clamped to
+    the grid: a value a hair outside the limits belongs to the border cell)."""
+    index = 0
+    for axis in range(2):
+        cell = int(np.floor((qs[m, variables[t, axis]] - lows[t, axis]) / steps[t, axis]))
+        cell = min(max(cell, 0), counts[t, axis] - 1)
+        index = index * counts[t, axis] + cell
+    return index
+
+
+@numba.njit(cache=True, fastmath=True)
+def valid_configurations(
+    qs: FloatArray,
+    lower: FloatArray,
+    upper: FloatArray,
+    root: FloatArray,
+    parents: npt.NDArray[np.int64],
+    origins: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    axes: FloatArray,
+    variables: npt.NDArray[np.int64],
+    group_links: npt.NDArray[np.int64],
+    group_centers: FloatArray,
+    group_radii: FloatArray,
+    group_starts: npt.NDArray[np.int64],
+    group_stops: npt.NDArray[np.int64],
+    sphere_links: npt.NDArray[np.int64],
+    sphere_centers: FloatArray,
+    sphere_radii: FloatArray,
+    group_roots: npt.NDArray[np.int64],
+    node_links: npt.NDArray[np.int64],
+    node_centers: FloatArray,
+    node_radii: FloatArray,
+    node_children: npt.NDArray[np.int64],
+    node_first: npt.NDArray[np.int64],
+    node_last: npt.NDArray[np.int64],
+    fine_links: npt.NDArray[np.int64],
+    fine_centers: FloatArray,
+    fine_radii: FloatArray,
+    box_rotations: FloatArray,
+    box_centers: FloatArray,
+    box_halves: FloatArray,
+    box_lows: FloatArray,
+    box_highs: FloatArray,
+    table_variables: npt.NDArray[np.int64],
+    table_lows: FloatArray,
+    table_steps: FloatArray,
+    table_counts: npt.NDArray[np.int64],
+    table_offsets: npt.NDArray[np.int64],
+    table_cells: npt.NDArray[np.int8],
+    table_margin: float,
+    group_box_pairs: npt.NDArray[np.int64],
+    group_pairs: npt.NDArray[np.int64],
+    margin: float,
+) -> npt.NDArray[np.bool_]:
+    """Per row of ``qs``: within limits and no checked pair of fine spheres closer than ``margin``.
+
+    Two levels per pair: the coarse spheres (a few per link, behind one bound per group) clear a
+    pair when none comes within the margin; only a pair the coarse level cannot clear is opened
+    at the fine level, each group's tight spheres a binary tree of bounding spheres
+    (``node_children`` -1 at a leaf, whose spheres are ``node_first:node_last``). Both levels
+    cover the same shapes, so the verdict is the fine level's.
+
+    ``group_pairs`` (P, 3) names each pair's table (`sphere_pair_tables`) in its third column, or
+    -1. Tables are read first, from the configuration's joints alone: a pair its table proves
+    colliding in the configuration's cell (1: clear, -1: colliding, 0: unknown) makes the row
+    invalid before any kinematics (when ``margin`` is no smaller than the tables' ``table_margin``),
+    and a pair it proves clear is skipped (when ``margin`` is no larger)."""
+    count = qs.shape[0]
+    groups, boxes = group_radii.shape[0], box_halves.shape[0]
+    clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
+    pair_state = np.zeros(group_pairs.shape[0], dtype=np.int8)
+    valid = np.ones(count, dtype=np.bool_)
+    poses = np.empty((parents.shape[0], 3, 4))
+    frame = np.empty((3, 4))
+    sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
+    group_world = np.empty((groups, 3))
+    coarse_local = np.ascontiguousarray(sphere_centers.T)
+    coarse_world = np.empty((3, sphere_radii.shape[0]))
+    coarse_placed = np.zeros(groups, dtype=np.int64)
+    fine_world = np.empty((3, fine_radii.shape[0]))
+    leaf_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
+    node_world = np.empty((node_radii.shape[0], 3))
+    node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
+    stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
+    # The box pairs as a dense (group, box) table, row-major: 0 where checked, far off where not,
+    # added to the squared gap of each group's bound to each box's axis-aligned bounds.
+    unchecked = np.full(groups * boxes, _FAR)
+    group_order = np.empty(groups, dtype=np.int64)
+    seen = np.zeros(groups, dtype=np.bool_)
+    ordered = 0
+    for k in range(group_box_pairs.shape[0]):
+        g = group_box_pairs[k, 0]
+        if not seen[g]:
+            seen[g] = True
+            group_order[ordered] = g
+            ordered += 1
+        unchecked[g * boxes + group_box_pairs[k, 1]] = 0.0
+    low_x, low_y, low_z = box_lows[:, 0].copy(), box_lows[:, 1].copy(), box_lows[:, 2].copy()
+    high_x, high_y, high_z = box_highs[:, 0].copy(), box_highs[:, 1].copy(), box_highs[:, 2].copy()
+    tolerance = 1e-9
+    tables = table_offsets.shape[0]
+    cells = np.empty((2, tables), dtype=np.int64)
+    for m in range(count):
+        stamp = m + 1
+        # Table cells are far apart in memory, so each lookup would wait on memory: the next row's
+        # cells are computed and fetched ahead while this row is checked.
+        for ahead in range(m + 1 if m > 0 else 0, min(m + 2, count)):
+            for t in range(tables):
+                if table_counts[t, 0] * table_counts[t, 1] == 1:  # one cell: nothing to look up
+                    cells[ahead & 1, t] = table_offsets[t]
+                    continue
+                cell = table_offsets[t] + _table_cell(
+                    qs, ahead, t, table_variables, table_lows, table_steps, table_counts
+                )
+                cells[ahead & 1, t] = cell
+                prefetch(table_cells, cell)
+        for j in range(qs.shape[1]):
+            if qs[m, j] < lower[j] - tolerance or qs[m, j] > upper[j] + tolerance:
+                valid[m] = False
+        if not valid[m]:
+            continue
+        for k in range(group_pairs.shape[0]):
+            t = group_pairs[k, 2]
+            pair_state[k] = 0
+            if t >= 0:
+                state = table_cells[cells[m & 1, t]]
+                if (state > 0 and clear_usable) or (state < 0 and colliding_usable):
+                    pair_state[k] = state
+                if pair_state[k] < 0:
+                    valid[m] = False
+                    break
+        if not valid[m]:
+            continue
+        folded_link_poses(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+        for g in range(groups):
+            place_point(poses, group_links[g], group_centers, g, group_world)
+        for o in range(ordered):
+            g = group_order[o]
+            reach = group_radii[g] + margin
+            if reach <= 0.0:
+                continue
+            x, y, z = group_world[g, 0], group_world[g, 1], group_world[g, 2]
+            if _boxes_near(x, y, z, reach * reach, low_x, low_y, low_z, high_x, high_y, high_z) == 0:
+                continue
+            for b in range(boxes):
+                if unchecked[g * boxes + b] > 0.0:
+                    continue
+                ex = max(low_x[b] - x, x - high_x[b], 0.0)
+                ey = max(low_y[b] - y, y - high_y[b], 0.0)
+                ez = max(low_z[b] - z, z - high_z[b], 0.0)
+                if ex * ex + ey * ey + ez * ez >= reach * reach:
+                    continue
+                if (
+                    point_box_gap(group_world, g, box_rotations, box_centers, box_halves, b) - group_radii[g]
+                    >= margin
+                ):
+                    continue
+                place_span_once(
+                    g,
+                    coarse_placed,
+                    stamp,
+                    poses,
+                    group_links[g],
+                    coarse_local,
+                    coarse_world,
+                    group_starts[g],
+                    group_stops[g],
+                )
+                coarse_hit = False
+                for s in range(group_starts[g], group_stops[g]):
+                    gap = box_gap_at(
+                        coarse_world[0, s],
+                        coarse_world[1, s],
+                        coarse_world[2, s],
+                        box_rotations,
+                        box_centers,
+                        box_halves,
+                        b,
+                    )
+                    if gap - sphere_radii[s] < margin:
+                        coarse_hit = True
+                        break
+                if coarse_hit and tree_hits_box(
+                    group_roots[g],
+                    b,
+                    poses,
+                    margin,
+                    node_links,
+                    node_centers,
+                    node_radii,
+                    node_children,
+                    node_first,
+                    node_last,
+                    node_world,
+                    node_placed,
+                    fine_centers,
+                    fine_radii,
+                    fine_world,
+                    leaf_placed,
+                    box_rotations,
+                    box_centers,
+                    box_halves,
+                    stack,
+                    stamp,
+                ):
+                    valid[m] = False
+                    break
+            if not valid[m]:
+                break
+        if not valid[m]:
+            continue
+        for k in range(group_pairs.shape[0]):
+            if pair_state[k] > 0:
+                continue
+            g, h = group_pairs[k, 0], group_pairs[k, 1]
+            if points_apart(group_world, g, group_world, h, group_radii[g] + group_radii[h] + margin):
+                continue
+            # Each group's coarse spheres near the other's bound, in one SIMD pass each, before any
+            # sphere is tested against a sphere: bounds overlap far more often than spheres do.
+            coarse_hit = True
+            for near, far in ((g, h), (h, g)):
+                place_span_once(
+                    near,
+                    coarse_placed,
+                    stamp,
+                    poses,
+                    group_links[near],
+                    coarse_local,
+                    coarse_world,
+                    group_starts[near],
+                    group_stops[near],
+                )
+                first, last = group_starts[near], group_stops[near]
+                if (
+                    span_near_bound(
+                        first, last, margin, sphere_radii, coarse_world, group_world, far, group_radii[far]
+                    )
+                    == 0
+                ):
+                    coarse_hit = False
+                    break
+            coarse_hit = coarse_hit and spans_touch(
+                group_starts[g],
+                group_stops[g],
+                group_starts[h],
+                group_stops[h],
+                margin,
+                sphere_radii,
+                coarse_world,
+                group_world,
+                h,
+                group_radii[h],
+            )
+            if coarse_hit and trees_touch(
+                group_roots[g],
+                group_roots[h],
+                poses,
+                margin,
+                node_links,
+                node_centers,
+                node_radii,
+                node_children,
+                node_first,
+                node_last,
+                node_world,
+                node_placed,
+                fine_centers,
+                fine_radii,
+                fine_world,
+                leaf_placed,
+                stack,
+                stamp,
+            ):
+                valid[m] = False
+                break
+    return valid

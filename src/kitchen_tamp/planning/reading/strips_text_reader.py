@@ -1,0 +1,403 @@
+"""Reading a STRIPS domain or problem straight from its text, for files the ``pddl`` package accepts.
+
+Importing Lark and the ``pddl`` package and loading their parsers costs about
+75 ms, more than pyperplan's whole run on a small problem; the text of a
+STRIPS file is a handful of nested lists. This reader covers the fragment we
+plan on, written the way the ``pddl`` package's grammar asks: typing,
+constants, negative preconditions and equality, conjunctions of literals, the
+sections in the grammar's order, lowercase keywords. It answers ``None``
+whenever a file steps outside that fragment or the package might object to
+it: other requirements, ``either``, numbers, an empty precondition, a keyword
+used as a name, a name the package's name pattern refuses, a name declared
+twice, a type cycle, a type used without ``:typing``, ``=`` without
+``:equality``, unbalanced parentheses, any syntax error. Then the caller reads
+the file with the ``pddl`` package (``pddl_files``), which decides and words
+every error. So the package stays the judge of what a file means; this reader
+only makes the common case fast, and ``tests/planning/test_strips_text_reader.py``
+holds it to the package's reading on every file we ship and on thousands of
+mutated ones.
+"""
+
+from __future__ import annotations
+
+from kitchen_tamp.planning.reading.syntax import (
+    EQUALITY,
+    ROOT_TYPE,
+    ActionSyntax,
+    DomainSyntax,
+    ProblemSyntax,
+)
+
+TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from kitchen_tamp.planning.reading.syntax import SyntaxLiteral, TypedName
+
+    Expression = str | list["Expression"]
+
+SUPPORTED_REQUIREMENTS = frozenset({":strips", ":typing", ":negative-preconditions", ":equality"})
+"""Requirements this reader takes; a file declaring any other is left to the ``pddl`` package."""
+
+GRAMMAR_WORDS = frozenset({
+    "define", "domain", "problem", "either", "object", "and", "or", "not", "imply", "forall", "exists",
+    "when", "oneof", "assign", "scale-up", "scale-down", "increase", "decrease", "maximize", "minimize",
+    "total-cost", "number",
+})
+"""The words of the ``pddl`` package's grammar; a file using one as a name is left to the package."""
+
+DOMAIN_SECTIONS = (":requirements", ":types", ":constants", ":predicates")
+"""The domain's optional sections, in the order the grammar requires, before the actions."""
+
+
+class Unsupported(Exception):
+    """Raised inside the reader when a file is not one it reads; the public functions answer None."""
+
+
+def read_domain_text(text: str) -> DomainSyntax | None:
+    """The domain in ``text``, or None when the ``pddl`` package must read it."""
+    try:
+        return _domain(_single_expression(text))
+    except Unsupported:
+        return None
+
+
+def read_problem_text(text: str) -> ProblemSyntax | None:
+    """The problem in ``text``, or None when the ``pddl`` package must read it."""
+    try:
+        return _problem(_single_expression(text))
+    except Unsupported:
+        return None
+
+
+def _single_expression(text: str) -> list[Expression]:
+    """The one parenthesised expression ``text`` holds, as nested lists of tokens."""
+    if not text.isascii():
+        raise Unsupported
+    lines = text.split("\n")
+    for index, line in enumerate(lines):
+        cut = line.find(";")
+        if cut >= 0:
+            if cut > 0 and line[cut - 1] not in " \t\r\f\v()":
+                raise Unsupported  # the package's lexer would read the ';' as part of a name
+            lines[index] = line[:cut]
+    tokens = " ".join(lines).replace("(", " ( ").replace(")", " ) ").split()
+    stack: list[list[Expression]] = [[]]
+    for token in tokens:
+        if token == "(":
+            opened: list[Expression] = []
+            stack[-1].append(opened)
+            stack.append(opened)
+        elif token == ")":
+            if len(stack) == 1:
+                raise Unsupported
+            stack.pop()
+        else:
+            stack[-1].append(token)
+    top = stack[0]
+    if len(stack) != 1 or len(top) != 1 or not isinstance(top[0], list):
+        raise Unsupported
+    return top[0]
+
+
+def _is_name(token: Expression) -> bool:
+    """Whether ``token`` is a name the package accepts: a letter, then letters, digits, '-' or '_'."""
+    return (isinstance(token, str) and token[:1].isalpha()
+            and token.replace("-", "").replace("_", "").isalnum()
+            and token.lower() not in GRAMMAR_WORDS)
+
+
+def _name(token: Expression) -> str:
+    if not _is_name(token):
+        raise Unsupported
+    assert isinstance(token, str)
+    return token
+
+
+def _variable(token: Expression) -> str:
+    """A variable's name, without its ``?``."""
+    if not isinstance(token, str) or token[0] != "?" or not _is_name(token[1:]):
+        raise Unsupported
+    return token[1:]
+
+
+def _type_name(token: Expression) -> str:
+    if token == ROOT_TYPE:
+        return ROOT_TYPE
+    return _name(token)
+
+
+def _typed_list(items: list[Expression], read: Callable[[Expression], str]) -> list[tuple[str, str | None]]:
+    """``a b - t c`` as ``[(a, t), (b, t), (c, None)]``; a name twice (in any case) is left to the package."""
+    typed: list[tuple[str, str | None]] = []
+    pending: list[str] = []
+    index = 0
+    while index < len(items):
+        item = items[index]
+        if item == "-":
+            if not pending or index + 1 >= len(items):
+                raise Unsupported
+            type_name = _type_name(items[index + 1])
+            typed.extend((name, type_name) for name in pending)
+            pending = []
+            index += 2
+        else:
+            pending.append(read(item))
+            index += 1
+    typed.extend((name, None) for name in pending)
+    if len({name.lower() for name, _ in typed}) != len(typed):
+        raise Unsupported
+    return typed
+
+
+def _tags(type_name: str | None) -> frozenset[str]:
+    return frozenset({type_name or ROOT_TYPE})
+
+
+def _keyword_section(expression: Expression) -> tuple[str, list[Expression]]:
+    """A section ``(:keyword ...)`` as its keyword and the rest."""
+    if not isinstance(expression, list) or not expression or not isinstance(expression[0], str):
+        raise Unsupported
+    return expression[0], expression[1:]
+
+
+def _header(expression: Expression, word: str) -> str:
+    """The name in ``(domain NAME)`` or ``(problem NAME)``."""
+    if not isinstance(expression, list) or len(expression) != 2 or expression[0] != word:
+        raise Unsupported
+    return _name(expression[1])
+
+
+def _requirements(items: list[Expression]) -> frozenset[str]:
+    if not items or any(not isinstance(item, str) or item not in SUPPORTED_REQUIREMENTS for item in items):
+        raise Unsupported
+    return frozenset(item for item in items if isinstance(item, str))
+
+
+class _DomainReader:
+    """The state of reading one domain: what is declared so far."""
+
+    def __init__(self, check_constants: bool) -> None:
+        self.check_constants = check_constants
+        """Whether a name in a literal must be a declared constant (in a domain, not in a goal)."""
+        self.constant_names: dict[str, str] = {}
+        """The declared constants, by lowercase name."""
+        self.requirements: frozenset[str] = frozenset()
+        self.types: dict[str, str | None] = {}
+        self.known_types: set[str] = set()
+        """The types the package knows (declared, or a declared type's parent), in lowercase."""
+        self.constants: tuple[TypedName, ...] = ()
+        self.predicates: dict[str, int] = {}
+        self.parameters: dict[str, str] = {}
+        """The current action's parameters, by lowercase name, as declared."""
+
+    def typed(self, items: list[Expression],
+              read: Callable[[Expression], str]) -> list[tuple[str, str | None]]:
+        typed = _typed_list(items, read)
+        if ":typing" not in self.requirements and any(type_name is not None for _, type_name in typed):
+            raise Unsupported  # the package requires :typing for a typed list
+        return typed
+
+    def read_types(self, items: list[Expression]) -> None:
+        if ":typing" not in self.requirements:
+            raise Unsupported
+        for name, parent in self.typed(items, _name):
+            self.types[name] = None if parent is None or parent.lower() == ROOT_TYPE else parent
+        lowered = {name.lower(): (parent.lower() if parent else None) for name, parent in self.types.items()}
+        self.known_types = set(lowered) | {parent for parent in lowered.values() if parent}
+        for start in lowered:
+            seen = {start}
+            current = lowered[start]
+            while current is not None:
+                if current in seen:
+                    raise Unsupported  # a cycle in the type hierarchy
+                seen.add(current)
+                current = lowered.get(current)
+
+    def check_type_known(self, type_name: str | None) -> None:
+        """A type the package knows: declared, or a declared type's parent. (It refuses ``- object``
+        in a domain: its types drop ``object`` as a parent.)"""
+        if type_name is None:
+            return
+        if type_name.lower() not in self.known_types:
+            raise Unsupported
+
+    def read_predicates(self, items: list[Expression]) -> None:
+        if not items:
+            raise Unsupported
+        declared: set[str] = set()
+        for item in items:
+            if not isinstance(item, list) or not item:
+                raise Unsupported
+            name = _name(item[0])
+            if name.lower() in declared:
+                raise Unsupported
+            declared.add(name.lower())
+            parameters = self.typed(item[1:], _variable)
+            for _, type_name in parameters:
+                self.check_type_known(type_name)
+            self.predicates[name] = len(parameters)
+
+    def term(self, token: Expression) -> str:
+        """A constant or variable (``?`` included) spelled as declared, as the package spells them."""
+        if isinstance(token, str) and token.startswith("?"):
+            variable = _variable(token)
+            return "?" + self.parameters.get(variable.lower(), variable)
+        name = _name(token)
+        if not self.check_constants:
+            return name
+        declared = self.constant_names.get(name.lower())
+        if declared is None:
+            raise Unsupported  # the package refuses a domain's undeclared constant
+        return declared
+
+    def atom(self, expression: Expression, positive: bool, out: list[SyntaxLiteral]) -> None:
+        """A literal ``(p t1 .. tn)`` or ``(= t1 t2)``."""
+        if not isinstance(expression, list) or not expression:
+            raise Unsupported
+        head = expression[0]
+        if head == EQUALITY:
+            if ":equality" not in self.requirements or len(expression) != 3:
+                raise Unsupported
+        else:
+            head = _name(head)
+        assert isinstance(head, str)
+        out.append((positive, head, tuple(self.term(term) for term in expression[1:])))
+
+    def condition(self, expression: Expression, out: list[SyntaxLiteral]) -> None:
+        """A conjunction of literals, nested conjunctions flattened."""
+        if not isinstance(expression, list) or not expression:
+            raise Unsupported
+        if expression[0] == "and":
+            for operand in expression[1:]:
+                self.condition(operand, out)
+        elif expression[0] == "not":
+            if len(expression) != 2:
+                raise Unsupported
+            self.atom(expression[1], False, out)
+        else:
+            self.atom(expression, True, out)
+
+    def effect(self, expression: Expression, out: list[SyntaxLiteral]) -> None:
+        """``(and l1 .. ln)`` or one literal; a literal is an atom or its negation."""
+        if not isinstance(expression, list) or not expression:
+            raise Unsupported
+        literals = expression[1:] if expression[0] == "and" else [expression]
+        for literal in literals:
+            if not isinstance(literal, list) or not literal or literal[0] == EQUALITY:
+                raise Unsupported
+            if literal[0] == "not":
+                if len(literal) != 2 or not isinstance(literal[1], list) or not literal[1] \
+                        or literal[1][0] == EQUALITY:
+                    raise Unsupported
+                self.atom(literal[1], False, out)
+            else:
+                self.atom(literal, True, out)
+
+    def action(self, items: list[Expression]) -> ActionSyntax:
+        if len(items) < 3 or items[1] != ":parameters" or not isinstance(items[2], list):
+            raise Unsupported
+        name = _name(items[0])
+        parameters = self.typed(items[2], _variable)
+        for _, type_name in parameters:
+            self.check_type_known(type_name)
+        self.parameters = {variable.lower(): variable for variable, _ in parameters}
+        precondition: list[SyntaxLiteral] = []
+        effect: list[SyntaxLiteral] = []
+        rest = items[3:]
+        if len(rest) >= 2 and rest[0] == ":precondition":
+            # An empty '()' is refused there: the package reads it as an empty 'or'.
+            self.condition(rest[1], precondition)
+            rest = rest[2:]
+        if len(rest) >= 2 and rest[0] == ":effect":
+            self.effect(rest[1], effect)
+            rest = rest[2:]
+        if rest:
+            raise Unsupported
+        return ActionSyntax(name, tuple((variable, _tags(type_name)) for variable, type_name in parameters),
+                            tuple(precondition), tuple(effect))
+
+
+def _domain(expression: list[Expression]) -> DomainSyntax:
+    if len(expression) < 2 or expression[0] != "define":
+        raise Unsupported
+    name = _header(expression[1], "domain")
+    reader = _DomainReader(check_constants=True)
+    actions: list[ActionSyntax] = []
+    next_section = 0
+    for section in expression[2:]:
+        keyword, items = _keyword_section(section)
+        if keyword == ":action":
+            actions.append(reader.action(items))
+            next_section = len(DOMAIN_SECTIONS)
+            continue
+        if keyword not in DOMAIN_SECTIONS[next_section:]:
+            raise Unsupported  # an unknown section, or one out of the grammar's order
+        next_section = DOMAIN_SECTIONS.index(keyword) + 1
+        if keyword == ":requirements":
+            reader.requirements = _requirements(items)
+        elif keyword == ":types":
+            reader.read_types(items)
+        elif keyword == ":constants":
+            constants = reader.typed(items, _name)
+            for _, type_name in constants:
+                reader.check_type_known(type_name)
+            reader.constants = tuple((constant, _tags(type_name)) for constant, type_name in constants)
+            reader.constant_names = {constant.lower(): constant for constant, _ in constants}
+        else:
+            reader.read_predicates(items)
+    if len({action.name.lower() for action in actions}) != len(actions):
+        raise Unsupported  # two actions of one name: the package's order between them is its set's
+    return DomainSyntax(name, reader.types, reader.predicates, reader.constants, tuple(actions))
+
+
+def _problem(expression: list[Expression]) -> ProblemSyntax:
+    if len(expression) < 5 or expression[0] != "define":
+        raise Unsupported
+    name = _header(expression[1], "problem")
+    keyword, items = _keyword_section(expression[2])
+    if keyword != ":domain" or len(items) != 1:
+        raise Unsupported
+    domain_name = _name(items[0])
+    sections = expression[3:]
+    keyword, items = _keyword_section(sections[0])
+    if keyword == ":requirements":
+        _requirements(items)
+        sections = sections[1:]
+    objects: list[tuple[str, str | None]] = []
+    if sections:
+        keyword, items = _keyword_section(sections[0])
+        if keyword == ":objects":
+            objects = _typed_list(items, _name)
+            sections = sections[1:]
+    if len(sections) != 2:
+        raise Unsupported  # :init and :goal, and nothing after them (a :metric is left to the package)
+    init = _init(sections[0], {name.lower(): name for name, _ in objects})
+    keyword, items = _keyword_section(sections[1])
+    if keyword != ":goal" or len(items) != 1:
+        raise Unsupported
+    goal: list[SyntaxLiteral] = []
+    _DomainReader(check_constants=False).condition(items[0], goal)  # no :equality, so an '=' is refused
+    return ProblemSyntax(name, domain_name, tuple((o, _tags(t)) for o, t in objects), init, tuple(goal))
+
+
+def _init(section: Expression, objects: dict[str, str]) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """The positive facts of ``(:init ...)``; each fact names objects only, spelled as ``objects``
+    (by lowercase name) declares them, as the package spells them."""
+    keyword, items = _keyword_section(section)
+    if keyword != ":init":
+        raise Unsupported
+    facts: list[tuple[str, tuple[str, ...]]] = []
+    for item in items:
+        positive = True
+        if isinstance(item, list) and item and item[0] == "not":
+            if len(item) != 2:
+                raise Unsupported
+            positive, item = False, item[1]
+        if not isinstance(item, list) or not item:
+            raise Unsupported
+        arguments = (_name(argument) for argument in item[1:])
+        fact = (_name(item[0]), tuple(objects.get(argument.lower(), argument) for argument in arguments))
+        if positive:
+            facts.append(fact)
+    return tuple(facts)
