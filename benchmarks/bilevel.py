@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from kitchen_tamp.bilevel import (
     BilevelProblem,
     BilevelResult,
+    SesameBudgets,
     abstract_bfs,
     backtracking_refinement,
     greedy_refinement,
@@ -50,15 +51,19 @@ PLANNERS = (
             lambda problem, seed: abstract_bfs(problem, seed=seed, samples_per_transition=K,
                                                max_samples=MAX_SAMPLES, time_budget_s=TIME_BUDGET_S)),
     Planner("greedy", "1 plan, K=1",
-            lambda problem, seed: greedy_refinement(problem, seed=seed, time_budget_s=TIME_BUDGET_S)),
+            lambda problem, seed: greedy_refinement(
+                problem, SesameBudgets(time_budget_s=TIME_BUDGET_S), seed=seed)),
     Planner("backtracking", f"1 plan, K={K}, {MAX_SAMPLES} samples",
             lambda problem, seed: backtracking_refinement(
-                problem, seed=seed, samples_per_step=K, max_samples=MAX_SAMPLES,
-                time_budget_s=TIME_BUDGET_S)),
+                problem,
+                SesameBudgets(samples_per_step=K, max_samples=MAX_SAMPLES, time_budget_s=TIME_BUDGET_S),
+                seed=seed)),
     Planner("SeSamE", f"K={K}, {SESAME_SAMPLES_PER_PLAN}/plan, {MAX_SAMPLES} samples",
             lambda problem, seed: sesame(
-                problem, seed=seed, max_plans=None, samples_per_step=K, max_samples=MAX_SAMPLES,
-                max_samples_per_plan=SESAME_SAMPLES_PER_PLAN, time_budget_s=TIME_BUDGET_S)),
+                problem, SesameBudgets(max_plans=None, samples_per_step=K, max_samples=MAX_SAMPLES,
+                                       max_samples_per_plan=SESAME_SAMPLES_PER_PLAN,
+                                       time_budget_s=TIME_BUDGET_S),
+                seed=seed)),
 )
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from toy_rooms_drawing import ASSETS, GrowthRenderer, RoomsEvent, Shadow
 
-from kitchen_tamp.bilevel import backtracking_refinement
+from kitchen_tamp.bilevel import SesameBudgets, backtracking_refinement
 from kitchen_tamp.bilevel.toy_rooms import pillar_shadow
 
 SAMPLES_PER_STEP = 4
@@ -20,8 +20,8 @@ SAMPLES_PER_STEP = 4
 def main() -> None:
     scene = pillar_shadow()
     events: list[RoomsEvent] = []
-    result = backtracking_refinement(scene.problem(), seed=1, samples_per_step=SAMPLES_PER_STEP,
-                                     on_sample=events.append)
+    budgets = SesameBudgets(samples_per_step=SAMPLES_PER_STEP)
+    result = backtracking_refinement(scene.problem(), budgets, seed=1, on_sample=events.append)
     print(f"backtracking, seed 1, K={SAMPLES_PER_STEP}: {result.outcome.value}; {result.detail}; "
           f"{result.counts}")
     renderer = GrowthRenderer(scene, result, events, f"Backtracking, K = {SAMPLES_PER_STEP} (seed 1)",

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from toy_rooms_drawing import ASSETS, GrowthRenderer, RoomsEvent
 
-from kitchen_tamp.bilevel import sesame
+from kitchen_tamp.bilevel import SesameBudgets, sesame
 from kitchen_tamp.bilevel.toy_rooms import blocked_doorway
 
 SAMPLES_PER_STEP = 4
@@ -20,7 +20,8 @@ SAMPLES_PER_STEP = 4
 def main() -> None:
     scene = blocked_doorway()
     events: list[RoomsEvent] = []
-    result = sesame(scene.problem(), seed=0, samples_per_step=SAMPLES_PER_STEP, on_sample=events.append)
+    result = sesame(scene.problem(), SesameBudgets(samples_per_step=SAMPLES_PER_STEP), seed=0,
+                    on_sample=events.append)
     for attempt in result.attempts:
         print(f"plan {attempt.index + 1} {' -> '.join(attempt.abstract_plan.states)}: {attempt.detail}")
     renderer = GrowthRenderer(scene, result, events, f"SeSamE, K = {SAMPLES_PER_STEP} (seed 0)")

@@ -10,6 +10,7 @@ import pytest
 from kitchen_tamp.bilevel import (
     BilevelProblem,
     BilevelResult,
+    SesameBudgets,
     abstract_bfs,
     backtracking_refinement,
     greedy_refinement,
@@ -23,8 +24,9 @@ Planner = Callable[[RoomsProblem, int], BilevelResult[Point, Point, str, Passage
 PLANNERS: dict[str, Planner] = {
     "abstract_bfs": lambda problem, seed: abstract_bfs(problem, seed=seed),
     "greedy": lambda problem, seed: greedy_refinement(problem, seed=seed),
-    "backtracking": lambda problem, seed: backtracking_refinement(problem, seed=seed, max_samples=300),
-    "sesame": lambda problem, seed: sesame(problem, seed=seed, max_samples_per_plan=60),
+    "backtracking": lambda problem, seed: backtracking_refinement(
+        problem, SesameBudgets(max_samples=300), seed=seed),
+    "sesame": lambda problem, seed: sesame(problem, SesameBudgets(max_samples_per_plan=60), seed=seed),
 }
 
 

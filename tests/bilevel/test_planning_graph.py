@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from kitchen_tamp.bilevel import SampleEvent, abstract_bfs, sesame
+from kitchen_tamp.bilevel import SampleEvent, SesameBudgets, abstract_bfs, sesame
 from kitchen_tamp.bilevel.toy_rooms import Passage, nine_rooms
 
 
@@ -13,7 +13,7 @@ def test_graph_record_matches_counts_and_plan(planner: str) -> None:
     problem = nine_rooms().problem()
     events: list[SampleEvent[str, Passage]] = []
     if planner == "sesame":
-        result = sesame(problem, seed=1, max_samples_per_plan=60, on_sample=events.append)
+        result = sesame(problem, SesameBudgets(max_samples_per_plan=60), seed=1, on_sample=events.append)
     else:
         result = abstract_bfs(problem, seed=1, on_sample=events.append)
     graph, counts = result.graph, result.counts
@@ -46,7 +46,8 @@ def test_graph_record_matches_counts_and_plan(planner: str) -> None:
 
 def test_sesame_events_name_plan_and_step() -> None:
     events: list[SampleEvent[str, Passage]] = []
-    result = sesame(nine_rooms().problem(), seed=0, max_samples_per_plan=20, on_sample=events.append)
+    result = sesame(nine_rooms().problem(), SesameBudgets(max_samples_per_plan=20), seed=0,
+                    on_sample=events.append)
     assert result.counts.abstract_plans > 1
     assert {event.plan_index for event in events} == set(range(result.counts.abstract_plans))
     assert all(event.step_index is not None for event in events)

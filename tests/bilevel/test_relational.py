@@ -11,6 +11,7 @@ import pytest
 from kitchen_tamp.bilevel import (
     AbstractTransition,
     SamplingFailure,
+    SesameBudgets,
     Trajectory,
     relational_plan_generator,
     relational_problem,
@@ -76,7 +77,7 @@ def test_a_kitchen_plan_refines_through_the_adapter_with_backtracking() -> None:
     sampler = KitchenByEffects(task, refused="placeIn", refusals=3)
     problem = relational_problem(task, task.state_atoms(task.initial_state), lambda atoms: atoms,
                                  lambda action: sampler)
-    result = sesame(problem, seed=0, samples_per_step=2)
+    result = sesame(problem, SesameBudgets(samples_per_step=2), seed=0)
     assert result.solved and result.plan is not None
     actions = [step.transition.action for step in result.plan.steps]
     assert validate_plan(task, actions).valid
@@ -127,7 +128,7 @@ def test_a_mismatched_abstract_state_is_a_sampling_failure_named_in_atoms() -> N
 
     problem = relational_problem(task, task.state_atoms(task.initial_state), lambda atoms: atoms,
                                  lambda action: standing_still)
-    result = sesame(problem, seed=0, max_plans=1, samples_per_step=1)
+    result = sesame(problem, SesameBudgets(max_plans=1, samples_per_step=1), seed=0)
     assert not result.solved
     message = result.graph.failed_samples[0].message
     assert message.startswith("trajectory ends in abstract state (") and ", not (" in message

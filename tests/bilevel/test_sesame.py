@@ -10,6 +10,7 @@ from kitchen_tamp.bilevel import (
     Outcome,
     PlanningCounts,
     SampleEvent,
+    SesameBudgets,
     backtracking_refinement,
     greedy_refinement,
     sesame,
@@ -79,7 +80,7 @@ def test_sesame_switches_to_the_second_abstract_plan_when_the_first_is_blocked()
 def test_backtracking_tries_k_samples_per_step_before_stepping_back() -> None:
     k = 4
     problem = chain_problem(2, lambda action, _: action == "s1->s2")
-    result = backtracking_refinement(problem, seed=0, samples_per_step=k)
+    result = backtracking_refinement(problem, SesameBudgets(samples_per_step=k), seed=0)
     (attempt,) = result.attempts
     first, second = attempt.steps
     assert (first.samples, first.failures, first.backtracks) == (k, 0, k - 1)
@@ -99,7 +100,8 @@ _GENEROUS_MAX_SAMPLES = 10_000
 def test_a_dead_end_costs_k_plus_k_squared_up_to_k_to_the_n_samples(length: int, k: int) -> None:
     # every step succeeds except the last, which always fails: each success enters the next step afresh
     problem = chain_problem(length, lambda action, _: action == f"s{length - 1}->s{length}")
-    result = backtracking_refinement(problem, seed=0, samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES)
+    budgets = SesameBudgets(samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES)
+    result = backtracking_refinement(problem, budgets, seed=0)
     (attempt,) = result.attempts
     assert attempt.outcome is Outcome.STEPS_EXHAUSTED
     assert [step.samples for step in attempt.steps] == [k ** (i + 1) for i in range(length)]
@@ -112,8 +114,8 @@ def test_a_step_gives_up_after_k_tries_since_entered_successes_included() -> Non
     problem = chain_problem(
         3, lambda action, sample: action == "s2->s3" or (action == "s1->s2" and sample % 2 == 1))
     events: list[SampleEvent[str, str]] = []
-    result = sesame(problem, seed=0, max_plans=1, samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES,
-                    on_sample=events.append)
+    budgets = SesameBudgets(max_plans=1, samples_per_step=k, max_samples=_GENEROUS_MAX_SAMPLES)
+    result = sesame(problem, budgets, seed=0, on_sample=events.append)
     assert result.outcome is Outcome.PLAN_BUDGET
     dead_end = [(3, False)] * k
     expected = [
@@ -134,7 +136,7 @@ def test_backtracking_goes_back_as_far_as_needed() -> None:
     k = 2
     # the third step fails 3k times: from both states of the first visit of step 2, then once more
     problem = chain_problem(3, lambda action, sample: action == "s2->s3" and sample <= 3 * k)
-    result = backtracking_refinement(problem, seed=0, samples_per_step=k)
+    result = backtracking_refinement(problem, SesameBudgets(samples_per_step=k), seed=0)
     assert result.solved
     first, second, third = result.attempts[0].steps
     assert third.failures == 3 * k and third.samples == 3 * k + 1
@@ -172,6 +174,6 @@ def test_a_start_in_the_goal_is_the_empty_plan() -> None:
 def test_invalid_budgets_are_refused() -> None:
     problem = open_corridor().problem()
     with pytest.raises(ValueError, match="samples_per_step"):
-        sesame(problem, samples_per_step=0)
+        sesame(problem, SesameBudgets(samples_per_step=0))
     with pytest.raises(ValueError, match="max_plans"):
-        sesame(problem, max_plans=0)
+        sesame(problem, SesameBudgets(max_plans=0))

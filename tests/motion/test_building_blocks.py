@@ -18,6 +18,7 @@ from kitchen_tamp.motion import (
     plan_rrt,
     plan_rrt_connect,
     planner_named,
+    planner_options,
     resample_path,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
@@ -88,8 +89,10 @@ def test_dense_check_names_the_colliding_segment() -> None:
 
 
 def test_registry_names_planners_for_the_cli() -> None:
-    assert dict(MOTION_PLANNERS) == {"rrt": plan_rrt, "rrt_connect": plan_rrt_connect}
+    assert {name: entry.plan for name, entry in MOTION_PLANNERS.items()} == {
+        "rrt": plan_rrt, "rrt_connect": plan_rrt_connect}
     assert planner_named("rrt_connect") is plan_rrt_connect
+    assert planner_options() == {"connect": "rrt_connect", "basic": "rrt"}
     with pytest.raises(UnknownPlannerError, match="choose one of rrt, rrt_connect"):
         planner_named("prm")
 

@@ -9,14 +9,21 @@ refinement never revisits the pick and fails, SeSamE re-grasps.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
+from kitchen_tamp.bilevel import SesameBudgets
 from kitchen_tamp.execute import verify_trajectory
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.planning import Task, load_task
-from kitchen_tamp.refinement import SamplingMotionBackend, SesameBudgets, SesameRefinement, refine_with_sesame
+from kitchen_tamp.refinement import (
+    KITCHEN_BUDGETS,
+    SamplingMotionBackend,
+    SesameRefinement,
+    refine_with_sesame,
+)
 
 PROBLEM = Path(__file__).resolve().parents[2] / "pddl" / "problem_baguette.pddl"
 SEED = 0
@@ -33,7 +40,7 @@ def _refine(task: Task, budgets: SesameBudgets) -> SesameRefinement:
 
 
 def test_greedy_refinement_fails_at_the_placement(task: Task) -> None:
-    greedy = _refine(task, SesameBudgets(max_plans=1, samples_per_step=1, max_samples=10))
+    greedy = _refine(task, replace(KITCHEN_BUDGETS, max_plans=1, samples_per_step=1, max_samples=10))
     assert greedy.refined is None
     (attempt,) = greedy.result.attempts
     stuck = [step for step in attempt.steps if step.failures]
@@ -43,7 +50,7 @@ def test_greedy_refinement_fails_at_the_placement(task: Task) -> None:
 
 
 def test_sesame_regrasps_and_the_result_verifies(task: Task) -> None:
-    outcome = _refine(task, SesameBudgets())
+    outcome = _refine(task, KITCHEN_BUDGETS)
     assert outcome.refined is not None, outcome.result.detail
     assert outcome.result.counts.backtracks >= 1  # it went back to the pick
     assert outcome.result.counts.abstract_plans == 1

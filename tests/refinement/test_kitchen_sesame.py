@@ -3,6 +3,7 @@ from where the previous one left the scene, SeSamE steps back and resamples it."
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +13,7 @@ from kitchen_tamp.execute import verify_trajectory
 from kitchen_tamp.kitchen import KitchenScene, build_kitchen_for_task
 from kitchen_tamp.planning import GroundAction, load_task
 from kitchen_tamp.refinement import SamplingMotionBackend, kitchen_sesame
-from kitchen_tamp.refinement.kitchen_sesame import SesameBudgets, refine_with_sesame
+from kitchen_tamp.refinement.kitchen_sesame import KITCHEN_BUDGETS, refine_with_sesame
 from kitchen_tamp.refinement.motion_backend import MotionBackend
 from kitchen_tamp.refinement.refine_action import ActionSampleRecord
 
@@ -68,7 +69,8 @@ def test_sesame_backtracks_when_an_action_fails_from_the_previous_outcome() -> N
     task = load_task(PROBLEM)
     with build_kitchen_for_task(task) as kitchen:
         outcome = refine_with_sesame(
-            kitchen, task, SamplingMotionBackend(), seed=0, budgets=SesameBudgets(1, 2, 40)
+            kitchen, task, SamplingMotionBackend(), seed=0,
+            budgets=replace(KITCHEN_BUDGETS, max_plans=1, samples_per_step=2, max_samples=40),
         )
     assert outcome.refined is not None, outcome.result.detail
     assert outcome.result.counts.backtracks >= 1
@@ -82,7 +84,8 @@ def test_greedy_budgets_fail_where_backtracking_succeeds() -> None:
     task = load_task(PROBLEM)
     with build_kitchen_for_task(task) as kitchen:
         greedy = refine_with_sesame(
-            kitchen, task, SamplingMotionBackend(), seed=0, budgets=SesameBudgets(1, 1, 40)
+            kitchen, task, SamplingMotionBackend(), seed=0,
+            budgets=replace(KITCHEN_BUDGETS, max_plans=1, samples_per_step=1, max_samples=40),
         )
     assert greedy.refined is None
     assert greedy.result.counts.backtracks == 0

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from kitchen_tamp.motion import RrtConnectHyperparameters, check_path_densely
+from kitchen_tamp.motion import MOTION_PLANNERS, RrtConnectHyperparameters, check_path_densely
 from kitchen_tamp.refinement import SamplingMotionBackend
 from tests.motion.toy_worlds import WALL_WITH_GAP, BoxBallWorld
 
@@ -35,7 +35,7 @@ def bounded(world: BoxBallWorld) -> Bounded:
 START, GOAL = np.array([0.1, 0.5]), np.array([0.9, 0.5])
 
 
-@pytest.mark.parametrize("planner", ["rrt_connect", "rrt"])
+@pytest.mark.parametrize("planner", sorted(MOTION_PLANNERS))
 def test_finds_a_path_through_the_gap_that_passes_the_dense_check(planner: str) -> None:
     checker = bounded(WALL_WITH_GAP)
     solution = SamplingMotionBackend(planner=planner).solve(
@@ -60,7 +60,7 @@ def test_same_rng_seed_gives_the_same_path() -> None:
 def test_blocked_query_fails_within_its_attempts() -> None:
     wall = BoxBallWorld(boxes=[((0.45, 0.0), (0.55, 1.0))])
     checker = bounded(wall)
-    backend = SamplingMotionBackend(attempts=2, rrt_connect=RrtConnectHyperparameters(max_iterations=200))
+    backend = SamplingMotionBackend(attempts=2, hyperparameters=RrtConnectHyperparameters(max_iterations=200))
     solution = backend.solve(START, GOAL, checker, checker, np.random.default_rng(0))
     assert not solution.solved and solution.path is None
     assert solution.attempts == 2
@@ -80,5 +80,5 @@ def test_a_path_free_for_the_planner_but_not_for_the_strict_checker_is_rejected(
 
 
 def test_rejects_unknown_planner_names() -> None:
-    with pytest.raises(ValueError, match="unknown sampling planner"):
+    with pytest.raises(ValueError, match="unknown motion planner 'prm'; choose one of rrt, rrt_connect"):
         SamplingMotionBackend(planner="prm")

@@ -5,7 +5,7 @@ actions a; knows nothing of PyBullet or the kitchen. Typical use::
 
     problem = BilevelProblem(initial_state=x0, abstraction=Abstraction(psi, successors, is_goal),
                              sampler_for=lambda a: samplers[a.name])
-    result = sesame(problem, seed=0, samples_per_step=10, max_samples=500)
+    result = sesame(problem, SesameBudgets(samples_per_step=10, max_samples=500), seed=0)
     if result.solved:
         for step in result.plan.steps: ...
 
@@ -24,6 +24,7 @@ from kitchen_tamp.bilevel.abstraction import (
     AbstractPlanGenerator,
     AbstractTransition,
 )
+from kitchen_tamp.bilevel.budgets import SesameBudgets
 from kitchen_tamp.bilevel.planning_graph import (
     AbstractActionEdge,
     AbstractorEdge,
@@ -74,6 +75,7 @@ __all__ = [
     "SampleCallback",
     "SampleEvent",
     "SamplingFailure",
+    "SesameBudgets",
     "StateNode",
     "StepSamplingRecord",
     "Trajectory",

@@ -31,13 +31,14 @@ also counts every try of a step.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Generic, TypeVar
 
 import numpy as np
 
 from kitchen_tamp.bilevel.abstract_plans import shortest_first_plans
 from kitchen_tamp.bilevel.abstraction import AbstractPlan, AbstractPlanGenerator
+from kitchen_tamp.bilevel.budgets import DEFAULT_BUDGETS, SesameBudgets
 from kitchen_tamp.bilevel.problem import BilevelProblem
 from kitchen_tamp.bilevel.results import (
     BilevelResult,
@@ -52,10 +53,6 @@ X = TypeVar("X")
 U = TypeVar("U")
 S = TypeVar("S")
 A = TypeVar("A")
-
-DEFAULT_SAMPLES_PER_STEP = 10
-DEFAULT_MAX_PLANS = 100
-DEFAULT_TIME_BUDGET_S = 60.0
 
 
 @dataclass
@@ -83,10 +80,10 @@ def _refine_with_backtracking(
     session: SamplingSession[X, U, S, A],
     abstract_plan: AbstractPlan[S, A],
     plan_index: int,
-    samples_per_step: int,
-    max_samples_per_plan: int | None,
+    budgets: SesameBudgets,
 ) -> tuple[PlanAttempt[S, A], int | None]:
     """Refine one abstract plan: the attempt's record and the final state node (``None`` on failure)."""
+    samples_per_step, max_samples_per_plan = budgets.samples_per_step, budgets.max_samples_per_plan
     transitions = abstract_plan.transitions
     counters = [_StepCounter(t.action) for t in transitions]
     nodes = [session.root] * (len(transitions) + 1)
@@ -135,32 +132,20 @@ def _refine_with_backtracking(
 
 def sesame(
     problem: BilevelProblem[X, U, S, A],
+    budgets: SesameBudgets = DEFAULT_BUDGETS,
     *,
     seed: int = 0,
-    max_plans: int | None = DEFAULT_MAX_PLANS,
-    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
-    max_samples: int | None = None,
-    max_samples_per_plan: int | None = None,
-    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
     on_sample: SampleCallback[S, A] | None = None,
     planner: str = "sesame",
 ) -> BilevelResult[X, U, S, A]:
-    """Try abstract plans best first, refining each with backtracking, until one is refined.
-
-    Budgets (``None``: unlimited): ``max_plans`` abstract plans, ``samples_per_step``
-    samples per visit of a step (successes included) before backtracking,
-    ``max_samples`` samples in all, ``max_samples_per_plan`` samples on any one
-    abstract plan before moving to the next, ``time_budget_s`` seconds (checked
-    before every sample). The
-    seed fixes both the order of equally good abstract plans and every sample.
+    """Try abstract plans best first, refining each with backtracking, until one is refined
+    or a budget of ``budgets`` runs out. The seed fixes both the order of equally good
+    abstract plans and every sample.
     """
-    if samples_per_step < 1:
-        raise ValueError(f"samples_per_step must be >= 1, got {samples_per_step}")
-    if max_plans is not None and max_plans < 1:
-        raise ValueError(f"max_plans must be >= 1, got {max_plans}")
+    max_plans = budgets.max_plans
     plan_seed, sample_seed = np.random.SeedSequence(seed).spawn(2)
-    session = SamplingSession(problem, np.random.default_rng(sample_seed), Budget(max_samples, time_budget_s),
-                              on_sample)
+    session = SamplingSession(problem, np.random.default_rng(sample_seed),
+                              Budget(budgets.max_samples, budgets.time_budget_s), on_sample)
     plans = plan_generator_of(problem)(session.graph.abstract_state_of(session.root),
                                        np.random.default_rng(plan_seed))
     attempts: list[PlanAttempt[S, A]] = []
@@ -189,8 +174,7 @@ def sesame(
         abstract_plan = next(plans, None)
         if abstract_plan is None:
             return result(Outcome.NO_ABSTRACT_PLAN, failure_detail(Outcome.NO_ABSTRACT_PLAN))
-        attempt, node = _refine_with_backtracking(session, abstract_plan, len(attempts), samples_per_step,
-                                                  max_samples_per_plan)
+        attempt, node = _refine_with_backtracking(session, abstract_plan, len(attempts), budgets)
         attempts.append(attempt)
         if node is not None:
             return result(Outcome.SOLVED, f"abstract plan {len(attempts)}: {attempt.detail}", node)
@@ -200,26 +184,24 @@ def sesame(
 
 def backtracking_refinement(
     problem: BilevelProblem[X, U, S, A],
+    budgets: SesameBudgets = DEFAULT_BUDGETS,
     *,
     seed: int = 0,
-    samples_per_step: int = DEFAULT_SAMPLES_PER_STEP,
-    max_samples: int | None = None,
-    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
     on_sample: SampleCallback[S, A] | None = None,
 ) -> BilevelResult[X, U, S, A]:
     """The first abstract plan only, refined with backtracking: SeSamE with ``max_plans=1``."""
-    return sesame(problem, seed=seed, max_plans=1, samples_per_step=samples_per_step, max_samples=max_samples,
-                  time_budget_s=time_budget_s, on_sample=on_sample, planner="backtracking")
+    return sesame(problem, replace(budgets, max_plans=1), seed=seed, on_sample=on_sample,
+                  planner="backtracking")
 
 
 def greedy_refinement(
     problem: BilevelProblem[X, U, S, A],
+    budgets: SesameBudgets = DEFAULT_BUDGETS,
     *,
     seed: int = 0,
-    time_budget_s: float | None = DEFAULT_TIME_BUDGET_S,
     on_sample: SampleCallback[S, A] | None = None,
 ) -> BilevelResult[X, U, S, A]:
     """The first abstract plan, one sample per step, never revisited: SeSamE with
     ``max_plans=1, samples_per_step=1``."""
-    return sesame(problem, seed=seed, max_plans=1, samples_per_step=1, time_budget_s=time_budget_s,
-                  on_sample=on_sample, planner="greedy")
+    return sesame(problem, replace(budgets, max_plans=1, samples_per_step=1), seed=seed, on_sample=on_sample,
+                  planner="greedy")

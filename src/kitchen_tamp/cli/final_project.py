@@ -43,12 +43,12 @@ from kitchen_tamp.execute.render.browser_replay import (
 )
 from kitchen_tamp.kitchen import KitchenError, KitchenMap, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.scene.choice import choose_scene
+from kitchen_tamp.motion import MOTION_PLANNERS, planner_options
 from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError, nonlinear_solver
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
     KITCHEN_BUDGETS,
-    SesameBudgets,
     SesameRefinement,
     refine_with_sesame,
     sesame_replanner,
@@ -63,7 +63,6 @@ SYMBOLIC_PLANNER = "bfs"
 SYMBOLIC_TIME_BUDGET_S = 60.0
 GIF_FILE = "replay.gif"
 JOINTS_FILE = "joints.png"
-RRT_VARIANTS = {"connect": "rrt_connect", "basic": "rrt"}
 
 
 class UsageError(Exception):
@@ -137,8 +136,10 @@ def build_parser() -> argparse.ArgumentParser:
             sub.add_argument("--waypoints", type=_integer_at_least(2), default=DEFAULT_SETTINGS.num_waypoints,
                              metavar="N", help="joint waypoints per move (default %(default)s)")
         if mode == "rrt":
-            sub.add_argument("--rrt", choices=sorted(RRT_VARIANTS), default="connect",
-                             help="RRT-Connect (default) or the single-tree goal-biased RRT")
+            options = planner_options()
+            sub.add_argument("--rrt", choices=list(options), default=next(iter(options)),
+                             help="; ".join(f"{option}: {MOTION_PLANNERS[name].summary}"
+                                            for option, name in options.items()) + " (default %(default)s)")
         _add_viewing_options(sub)
     replay = modes.add_parser("replay", help="re-verify and re-render a saved run without planning")
     replay.add_argument("run_dir", type=Path, metavar="RUN_DIR", help="folder with trajectory.json")
@@ -161,7 +162,7 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
             raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
         nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
         return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
-    return SamplingMotionBackend(planner=RRT_VARIANTS[args.rrt])
+    return SamplingMotionBackend(planner=planner_options()[args.rrt])
 
 
 def _physics_replanner(run: SavedRun) -> Replanner:
@@ -321,7 +322,8 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         _say(f"{problem.name}: shortest plan has {len(result.plan)} actions; refining with SeSamE and "
              f"{backend.name} (seed {args.seed})")
         clock = time.perf_counter()
-        budgets = SesameBudgets(args.max_plans, args.samples_per_step, args.max_samples)
+        budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans, samples_per_step=args.samples_per_step,
+                          max_samples=args.max_samples)
         outcome = refine_with_sesame(
             kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=on_sample
         )

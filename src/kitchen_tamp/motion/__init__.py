@@ -23,10 +23,13 @@ from kitchen_tamp.motion.configuration_space import ConfigurationSpace, InvalidM
 from kitchen_tamp.motion.joint_path import JointPath, densify_path, path_length, resample_path
 from kitchen_tamp.motion.path_verification import PathCheck, check_path_densely
 from kitchen_tamp.motion.planners import (
+    DEFAULT_MOTION_PLANNER,
     MOTION_PLANNERS,
     MotionPlanner,
+    RegisteredPlanner,
     UnknownPlannerError,
     planner_named,
+    planner_options,
 )
 from kitchen_tamp.motion.planning_result import MotionPlanningError, PlanningResult, PlanStatus
 from kitchen_tamp.motion.sampling.rrt import RrtHyperparameters, plan_rrt
@@ -41,6 +44,7 @@ from kitchen_tamp.motion.sampling.shortcut import (
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 __all__ = [
+    "DEFAULT_MOTION_PLANNER",
     "MOTION_PLANNERS",
     "CollisionChecker",
     "ConfigurationSpace",
@@ -54,6 +58,7 @@ __all__ = [
     "PathCheck",
     "PlanStatus",
     "PlanningResult",
+    "RegisteredPlanner",
     "RrtConnectHyperparameters",
     "RrtHyperparameters",
     "ShortcutHyperparameters",
@@ -67,6 +72,7 @@ __all__ = [
     "plan_rrt",
     "plan_rrt_connect",
     "planner_named",
+    "planner_options",
     "prune_waypoints",
     "resample_path",
     "shortcut_path",

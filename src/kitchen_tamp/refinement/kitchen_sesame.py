@@ -21,6 +21,7 @@ from kitchen_tamp.bilevel import (
     BilevelResult,
     SampleEvent,
     SamplingFailure,
+    SesameBudgets,
     Trajectory,
     relational_problem,
     sesame,
@@ -41,27 +42,10 @@ class KitchenState:
     scene: SceneState
 
 
-@dataclass(frozen=True)
-class SesameBudgets:
-    """How much SeSamE may try in the kitchen before the run fails.
-
-    These are the kitchen's budgets, sized for samples that cost a motion plan
-    each; the generic library's defaults (``kitchen_tamp.bilevel.sesame``) are
-    sized for cheap samples and are a different thing.
-    """
-
-    max_plans: int = 5
-    """Abstract plans SeSamE may try, shortest first."""
-    samples_per_step: int = 4
-    """Samples of one action (targets + motion) per visit before stepping back."""
-    max_samples: int = 120
-    """Samples over the whole run."""
-    time_budget_s: float = 900.0
-    """Far above what the sample budgets take, so the seed alone decides the result."""
-
-
-KITCHEN_BUDGETS: Final = SesameBudgets()
-"""The kitchen's default budgets (the command line's defaults)."""
+KITCHEN_BUDGETS: Final = SesameBudgets(max_plans=5, samples_per_step=4, max_samples=120, time_budget_s=900.0)
+"""The kitchen's default budgets (the command line's defaults), sized for samples that cost a
+motion plan each; the time budget is far above what the sample budgets take, so the seed
+alone decides the result."""
 
 
 @dataclass
@@ -142,7 +126,7 @@ def refine_with_sesame(
     task: Task,
     backend: MotionBackend,
     seed: int,
-    budgets: SesameBudgets = SesameBudgets(),
+    budgets: SesameBudgets = KITCHEN_BUDGETS,
     collision_model: str = DEFAULT_COLLISION_MODEL,
     on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
 ) -> SesameRefinement:
@@ -155,15 +139,7 @@ def refine_with_sesame(
         if on_sample is not None:
             on_sample(event, sampler.last_record)
 
-    result = sesame(
-        problem,
-        seed=seed,
-        max_plans=budgets.max_plans,
-        samples_per_step=budgets.samples_per_step,
-        max_samples=budgets.max_samples,
-        time_budget_s=budgets.time_budget_s,
-        on_sample=report,
-    )
+    result = sesame(problem, budgets, seed=seed, on_sample=report)
     if result.plan is None:
         kitchen.scene.restore_state(initial.scene)
         return SesameRefinement(None, result)

@@ -10,20 +10,18 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import (
+    DEFAULT_MOTION_PLANNER,
     ConfigurationSpace,
-    RrtConnectHyperparameters,
-    RrtHyperparameters,
     ShortcutHyperparameters,
     check_path_densely,
     path_length,
-    plan_rrt,
-    plan_rrt_connect,
+    planner_named,
     shortcut_path,
 )
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
@@ -92,18 +90,18 @@ class SamplingMotionBackend:
     (planners check edges at 0.01 rad, which can graze obstacles in between).
     """
 
-    planner: str = "rrt_connect"
+    planner: str = DEFAULT_MOTION_PLANNER
+    """A name of ``kitchen_tamp.motion.MOTION_PLANNERS``."""
     attempts: int = 3
-    rrt: RrtHyperparameters = field(default_factory=RrtHyperparameters)
-    rrt_connect: RrtConnectHyperparameters = field(default_factory=RrtConnectHyperparameters)
+    hyperparameters: Any = None
+    """The planner's hyper-parameters (its own type); None: the planner's defaults."""
     shortcut: ShortcutHyperparameters = field(
         default_factory=lambda: ShortcutHyperparameters(max_iterations=60)
     )
     dense_resolution: float = JUDGE_RESOLUTION_RAD
 
     def __post_init__(self) -> None:
-        if self.planner not in ("rrt", "rrt_connect"):
-            raise ValueError(f"unknown sampling planner {self.planner!r}; choose rrt or rrt_connect")
+        planner_named(self.planner)  # an UnknownPlannerError (a ValueError) names the choices
         if self.attempts < 1:
             raise ValueError(f"attempts must be at least 1, got {self.attempts}")
 
@@ -127,20 +125,10 @@ class SamplingMotionBackend:
         for attempt in range(1, self.attempts + 1):
             seed = int(rng.integers(2**31))
             phase = time.perf_counter()
-            if self.planner == "rrt":
-                result = plan_rrt(
-                    start, goal, space, checker, self.rrt, seed=seed, time_budget_s=DETERMINISM_TIME_BUDGET_S
-                )
-            else:
-                result = plan_rrt_connect(
-                    start,
-                    goal,
-                    space,
-                    checker,
-                    self.rrt_connect,
-                    seed=seed,
-                    time_budget_s=DETERMINISM_TIME_BUDGET_S,
-                )
+            result = planner_named(self.planner)(
+                start, goal, space, checker, self.hyperparameters, seed=seed,
+                time_budget_s=DETERMINISM_TIME_BUDGET_S,
+            )
             timings["planning_s"] += time.perf_counter() - phase
             totals["iterations"] += result.iterations
             totals["nodes"] += result.nodes
