@@ -22,7 +22,9 @@ State = int
 
 
 def atom_text(atom: Atom) -> str:
-    """PDDL text of an atom: ``(boxOn sugar stove)``."""
+    """PDDL text of an atom or a ground action: ``(boxOn sugar stove)``, ``(pickUp spam countertop)``.
+
+    The one place this text is written: plans, messages and reports all use it."""
     return "(" + " ".join(atom) + ")"
 
 
@@ -80,7 +82,7 @@ class GroundAction(FrozenRecord):
     @property
     def text(self) -> str:
         """The IPC plan-file form: ``(pickUp spam countertop)``."""
-        return "(" + str(self) + ")"
+        return atom_text((self.name, *self.args))
 
     def applicable(self, state: State) -> bool:
         return state & self.pre == self.pre and not state & self.pre_neg

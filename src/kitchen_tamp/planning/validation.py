@@ -38,7 +38,7 @@ def validate_plan(task: Task, plan: Iterable[GroundAction | PlanStep]) -> PlanVa
     for number, raw in enumerate(plan, start=1):
         name, args = _as_step(raw)
         action = actions.get((name.lower(), tuple(a.lower() for a in args)))
-        text = "(" + " ".join((name, *args)) + ")"
+        text = atom_text((name, *args))
         if action is None:
             schema_names = {a.name.lower() for a in task.actions}
             unknown = [a for a in args if a.lower() not in {o.lower() for o in task.objects}]

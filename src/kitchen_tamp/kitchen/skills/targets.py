@@ -11,6 +11,7 @@ import numpy as np
 from kitchen_tamp.kitchen.action_replay import replay_action
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment
+from kitchen_tamp.planning import atom_text
 from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
 
 
@@ -61,4 +62,4 @@ class SkillTargets:
 def action_text(action: tuple[str, tuple[str, ...]]) -> str:
     """An action as PDDL text, e.g. ``(pickUp spam countertop)``."""
     name, args = action
-    return "(" + " ".join((name, *args)) + ")"
+    return atom_text((name, *args))

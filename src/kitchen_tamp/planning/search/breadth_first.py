@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, StateParents, plan_to
-from kitchen_tamp.planning.task import State, Task
+from kitchen_tamp.planning.task import State, Task, atom_text
 
 
 def breadth_first_search(
@@ -71,7 +71,7 @@ def _unsolvable(task: Task, expanded: int, generated: int, budget: SearchBudget)
 def unsolvable_message(task: Task, reachable_states: int) -> str:
     """Why a complete search found no plan, in one line."""
     if task.unreachable_goal_atoms:
-        names = " ".join(sorted("(" + " ".join(a) + ")" for a in task.unreachable_goal_atoms))
+        names = " ".join(sorted(atom_text(a) for a in task.unreachable_goal_atoms))
         return f"unsolvable: goal atom(s) {names} can never become true"
     return f"unsolvable: none of the {reachable_states} reachable states satisfies the goal"
 
