@@ -174,6 +174,7 @@ SWITCHES_DOMAIN = """(define (domain switches) (:requirements :strips :typing) (
     :precondition (on ?s) :effect (and (off ?s) (not (on ?s)))))"""
 
 
+@pytest.mark.slow
 def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
     switches = [f"s{i}" for i in range(24)]  # breadth-first search meets 2^24 states before the goal
     domain = write(tmp_path, SWITCHES_DOMAIN, "domain.pddl")

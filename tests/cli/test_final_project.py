@@ -36,6 +36,7 @@ def hard_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return out
 
 
+@pytest.mark.slow
 def test_hard_problem_is_solved_verified_and_leaves_every_file(hard_run: Path) -> None:
     report = _report(hard_run)
     assert report["solved"] is True and report["failure"] is None
@@ -66,6 +67,7 @@ def test_hard_problem_is_solved_verified_and_leaves_every_file(hard_run: Path) -
     assert report["outputs"]["html_shows"] == "physics"  # the motion the simulator executed
 
 
+@pytest.mark.slow
 def test_replay_reproduces_the_verification(hard_run: Path, tmp_path: Path) -> None:
     assert main(["replay", str(hard_run), "--out", str(tmp_path), "--no-video"]) == 0
     replayed = _report(tmp_path, "replay_report.json")
@@ -73,6 +75,7 @@ def test_replay_reproduces_the_verification(hard_run: Path, tmp_path: Path) -> N
     assert replayed["solved"] is True
 
 
+@pytest.mark.slow
 def test_replay_of_a_tampered_trajectory_fails(hard_run: Path, tmp_path: Path) -> None:
     data = json.loads((hard_run / "trajectory.json").read_text())
     data["steps"] = data["steps"][:-1]  # the last placement never happens
@@ -89,6 +92,7 @@ def _with_scene(hard_run: Path, folder: Path, scene: Path) -> Path:
     return folder
 
 
+@pytest.mark.slow
 def test_replay_judges_in_the_kitchen_the_run_recorded(
     hard_run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -109,6 +113,7 @@ def test_replay_judges_in_the_kitchen_the_run_recorded(
     assert "the scene file this run planned in is gone" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_same_seed_gives_the_same_report_apart_from_timing(tmp_path: Path) -> None:
     a, b = tmp_path / "a", tmp_path / "b"
     for out in (a, b):
@@ -118,12 +123,14 @@ def test_same_seed_gives_the_same_report_apart_from_timing(tmp_path: Path) -> No
     assert _report(a)["outputs"]["gif"] is None and not (a / "replay.gif").exists()
 
 
+@pytest.mark.slow
 def test_basic_rrt_solves_the_kitchen_problem(tmp_path: Path) -> None:
     assert main(["rrt", "--rrt", "basic", "--out", str(tmp_path), "--no-video"]) == 0
     report = _report(tmp_path)
     assert report["motion_planner"] == "rrt" and report["verification"]["collision_free"] is True
 
 
+@pytest.mark.slow
 def test_default_output_folder_is_named_after_problem_mode_and_seed(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -140,6 +147,7 @@ class _FailingBackend:
         return MotionSolution(None, "refused", 1, {"iterations": 0})
 
 
+@pytest.mark.slow
 def test_a_step_that_cannot_be_refined_exits_1_and_the_report_names_it(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -211,6 +219,7 @@ def test_gui_without_a_display_is_refused(
     assert "display" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_planning_with_the_pybullet_model_is_verified_too(tmp_path: Path) -> None:
     assert main(["rrt", "--collision-model", "pybullet", "--out", str(tmp_path), "--no-video"]) == 0
     report = _report(tmp_path)
@@ -218,6 +227,7 @@ def test_planning_with_the_pybullet_model_is_verified_too(tmp_path: Path) -> Non
     assert report["verification"]["collision_free"] is True
 
 
+@pytest.mark.slow
 def test_optimizes_solves_verifies_and_compares_with_rrt_connect(tmp_path: Path) -> None:
     assert main(["optimizes", "--out", str(tmp_path), "--no-video"]) == 0
     report = _report(tmp_path)
@@ -237,6 +247,7 @@ def test_optimizes_solves_verifies_and_compares_with_rrt_connect(tmp_path: Path)
     assert (tmp_path / "joints.png").exists()
 
 
+@pytest.mark.slow
 def test_step_waits_for_enter_before_each_action(
     hard_run: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -303,6 +314,7 @@ def test_no_nonlinear_solver_is_a_setup_error_found_before_planning(
     assert captured.out == "" and not (tmp_path / "run").exists()
 
 
+@pytest.mark.slow
 def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
     out = tmp_path / "run"
     run = interrupt_once_printed("final_project.py", ["rrt", "--problem", "problem_hard.pddl", "--no-video",

@@ -26,6 +26,7 @@ def _texts(folder: Path) -> dict[str, str]:
     return {p.name: p.read_text() for p in sorted(folder.glob("random-*.pddl"))}
 
 
+@pytest.mark.slow
 def test_problems_are_valid_lay_out_and_their_solvability_is_the_planners(tmp_path: Path) -> None:
     problems = generate_problems(6, 11, tmp_path, DOMAIN)
     assert [p.name for p in problems] == [f"random-{i:03d}" for i in range(6)]
@@ -45,6 +46,7 @@ def test_problems_are_valid_lay_out_and_their_solvability_is_the_planners(tmp_pa
     assert len(boxes_seen) >= 2
 
 
+@pytest.mark.slow
 def test_same_seed_same_files_other_seed_other_files(tmp_path: Path) -> None:
     generate_problems(5, 4, tmp_path / "a", DOMAIN)
     generate_problems(5, 4, tmp_path / "b", DOMAIN)

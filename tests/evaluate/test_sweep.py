@@ -30,6 +30,7 @@ def _by_seed(out: Path) -> dict[str, dict[str, str]]:
     return {row["seed"]: row for row in read_rows(out / "results.csv")}
 
 
+@pytest.mark.slow
 def test_crashes_timeouts_and_failures_are_recorded_and_the_sweep_goes_on(tmp_path: Path) -> None:
     out = tmp_path / "sweep"
     assert main(_fake_sweep(out, "0-3", "--timeout", "3")) == 0
@@ -47,6 +48,7 @@ def test_crashes_timeouts_and_failures_are_recorded_and_the_sweep_goes_on(tmp_pa
     assert "--run-command" in summary  # the command that made the sweep
 
 
+@pytest.mark.slow
 def test_an_interrupted_sweep_resumes_without_lost_or_repeated_rows(tmp_path: Path) -> None:
     out, log = tmp_path / "sweep", tmp_path / "calls.txt"
     command = [sys.executable, "-m", "kitchen_tamp.evaluate", *_fake_sweep(out, "0,4-6", "--workers", "1")]

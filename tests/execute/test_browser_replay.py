@@ -59,6 +59,7 @@ def _index(recording: SceneRecording, body: str, link: str) -> int:
     return [(x.body, x.link) for x in recording.links].index((body, link))
 
 
+@pytest.mark.slow
 def test_recording_draws_every_visual_and_ends_where_the_replay_ends(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification, recording: SceneRecording
 ) -> None:
@@ -132,6 +133,7 @@ def test_meshes_lose_only_their_texture_coordinates() -> None:
     assert not any(line.startswith("vt") for line in converted.splitlines())
 
 
+@pytest.mark.slow
 def test_page_embeds_everything(page: Path) -> None:
     html = page.read_text()
     assert re.search(r"<script[^>]+src=", html) is None
@@ -139,6 +141,7 @@ def test_page_embeds_everything(page: Path) -> None:
     assert page.stat().st_size < 20e6
 
 
+@pytest.mark.slow
 def test_replay_page_loads_draws_the_kitchen_and_animates_the_whole_run_in_chromium(
     page: Path, recording: SceneRecording, tmp_path: Path
 ) -> None:
@@ -179,6 +182,7 @@ def test_replay_page_loads_draws_the_kitchen_and_animates_the_whole_run_in_chrom
     assert changed.mean() > 0.05  # the kitchen covers a good part of the picture
 
 
+@pytest.mark.slow
 def test_final_project_serves_the_live_viewer_without_waiting_for_anyone(
     refined: KitchenTrajectory, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -203,6 +207,7 @@ def test_page_camera_looks_along_the_gifs_line_of_sight() -> None:
     assert np.allclose(gif_direction, page_direction, atol=1e-6)
 
 
+@pytest.mark.slow
 def test_a_thinned_recording_keeps_its_ends_and_at_most_the_frames_asked_for(
     recording: SceneRecording,
 ) -> None:

@@ -19,6 +19,8 @@ from kitchen_tamp.planning import Task, load_task
 from kitchen_tamp.refinement import SamplingMotionBackend, refine_with_sesame
 from kitchen_tamp.refinement.kitchen_sesame import sesame_replanner
 
+pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
+
 REPO = Path(__file__).resolve().parents[2]
 
 
@@ -43,7 +45,6 @@ def test_the_kitchen_problem_holds_up_under_physics(kitchen_task: Task, refined:
     assert [a["action"] for a in data["actions"]] == refined.plan  # type: ignore[index]
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("problem", ["problem_hard.pddl", "problem_baguette.pddl"])
 def test_harder_problems_hold_up_under_physics(problem: str) -> None:
     task, trajectory = _refine(problem)

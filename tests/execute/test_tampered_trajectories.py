@@ -21,6 +21,8 @@ from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
 from tests.execute.conftest import PROBLEM
 
+pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
+
 EVERY_BODY = [{"body": name, "link": None, "robot_links": None} for name in ("kitchen", "spam", "sugar")]
 """The first format's contact declaration that excused anything."""
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from kitchen_tamp.execute import Verification, build_timeline, verify_trajectory
 from kitchen_tamp.execute.render.replay_video import MIN_FRAMES, frame_times
@@ -19,6 +20,7 @@ def test_times_increase_and_steps_start_in_order(refined: KitchenTrajectory, ver
     assert timeline.actions == tuple(refined.plan)
 
 
+@pytest.mark.slow
 def test_playing_every_frame_ends_in_the_goal_state(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+import pytest
 
 from kitchen_tamp.execute import verify_trajectory
 from kitchen_tamp.kitchen import build_kitchen_for_task
@@ -17,6 +18,7 @@ def _verify(task: Task, trajectory: KitchenTrajectory) -> dict[str, object]:
         return verify_trajectory(kitchen, task, trajectory).report_data()
 
 
+@pytest.mark.slow
 def test_a_refined_plan_verifies(kitchen_task: Task, refined: KitchenTrajectory) -> None:
     report = _verify(kitchen_task, refined)
     assert report["verified"] is True, report["problems"]
@@ -28,6 +30,7 @@ def test_a_refined_plan_verifies(kitchen_task: Task, refined: KitchenTrajectory)
     assert int(report["configurations_checked"]) > 1000  # type: ignore[call-overload]
 
 
+@pytest.mark.slow
 def test_every_checked_state_is_close_to_the_next(kitchen_task: Task, refined: KitchenTrajectory) -> None:
     from kitchen_tamp.kitchen.segment import LINEAR_STEP, interpolate_segment
 
@@ -51,6 +54,7 @@ def _through(step: ActionTrajectory, detour: np.ndarray) -> ActionTrajectory:
     )
 
 
+@pytest.mark.slow
 def test_a_move_through_an_obstacle_is_caught_and_named(
     kitchen_task: Task, refined: KitchenTrajectory
 ) -> None:
@@ -65,6 +69,7 @@ def test_a_move_through_an_obstacle_is_caught_and_named(
     assert any("step 1 (open drawer) move: collision" in p for p in report["problems"])  # type: ignore[attr-defined]
 
 
+@pytest.mark.slow
 def test_a_trajectory_that_stops_early_does_not_reach_the_goal(
     kitchen_task: Task, refined: KitchenTrajectory
 ) -> None:
@@ -74,6 +79,7 @@ def test_a_trajectory_that_stops_early_does_not_reach_the_goal(
     assert report["verified"] is False
 
 
+@pytest.mark.slow
 def test_a_step_labelled_with_the_wrong_action_is_caught(
     kitchen_task: Task, refined: KitchenTrajectory
 ) -> None:

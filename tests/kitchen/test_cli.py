@@ -8,6 +8,7 @@ from kitchen_tamp.kitchen.__main__ import main
 from tests.kitchen.conftest import PROBLEMS, REPO
 
 
+@pytest.mark.slow
 def test_show_writes_pictures(tmp_path: Path) -> None:
     out = tmp_path / "scene.png"
     assert (

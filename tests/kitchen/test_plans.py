@@ -11,6 +11,8 @@ from kitchen_tamp.kitchen import abstract_state, build_kitchen_for_task, sample_
 from kitchen_tamp.planning import plan
 from tests.kitchen.conftest import LAYOUT_PROBLEMS, task_of
 
+pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
+
 
 @pytest.mark.parametrize("problem", LAYOUT_PROBLEMS, ids=lambda p: p.stem)
 @pytest.mark.parametrize("seed", [0, 1])

@@ -68,6 +68,7 @@ def test_gradients_are_the_finite_differences(scenes: dict[str, SphereScene], he
     assert smooth.mean() > 0.95
 
 
+@pytest.mark.slow
 def test_a_value_above_the_margin_keeps_every_pair_apart(scenes: dict[str, SphereScene]) -> None:
     clearance = SphereClearance(scenes["free"], MARGIN, WIDTH)
     model = clearance.model
@@ -80,6 +81,7 @@ def test_a_value_above_the_margin_keeps_every_pair_apart(scenes: dict[str, Spher
     assert np.all(values[closest < MARGIN] < MARGIN)
 
 
+@pytest.mark.slow
 def test_the_ends_of_a_move_have_the_full_clearance(scenes: dict[str, SphereScene]) -> None:
     model = scenes["holding"]
     plain = SphereClearance(model, MARGIN, WIDTH)

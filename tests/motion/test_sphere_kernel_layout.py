@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+import pytest
 
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments
@@ -99,6 +100,7 @@ def test_folded_tree_places_every_sphere_where_the_full_tree_does(
             assert np.max(np.abs(world - expected[m])) < 1e-12
 
 
+@pytest.mark.slow
 def test_verdicts_at_the_spheres_own_contact_are_the_numpy_references(
     checkers: list[SphereCollisionChecker],
 ) -> None:

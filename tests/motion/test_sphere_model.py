@@ -82,6 +82,7 @@ def test_spheres_cover_every_panda_collision_hull() -> None:
         assert max(reaches) < 0.02, shape.link
 
 
+@pytest.mark.slow
 def test_tight_covering_is_proved_and_repaired() -> None:
     """Fresh from the generator: a finger and a box are covered with every sphere reaching a few
     millimetres out; a covering with a sphere taken away fails on sampled points, and the
@@ -163,6 +164,7 @@ def test_never_calls_free_what_pybullet_finds_colliding(request: pytest.FixtureR
     assert false_positives < 0.06  # tight: few configurations PyBullet finds free are refused
 
 
+@pytest.mark.slow
 def test_compiled_kernel_agrees_with_numpy(free: CheckerPair, holding: CheckerPair) -> None:
     rng = np.random.default_rng(3)
     for pair in (free, holding):

@@ -124,6 +124,7 @@ def test_the_fast_reader_takes_the_files_we_ship_and_reads_them_as_the_package_d
     assert _normal(fast_problem) == _normal(_pddl_problem(problem, problem_text))
 
 
+@pytest.mark.slow
 def test_a_mutated_file_is_read_as_the_package_reads_it_or_left_to_it(tmp_path: Path) -> None:
     rng = random.Random(20261130)
     taken = left = 0
@@ -151,6 +152,7 @@ def test_a_mutated_file_is_read_as_the_package_reads_it_or_left_to_it(tmp_path: 
     assert taken > 500 and left > 500  # the mutations reach both sides
 
 
+@pytest.mark.slow
 def test_loading_gives_the_same_task_or_the_same_error_as_the_package_alone(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     rng = random.Random(7)

@@ -25,6 +25,8 @@ from kitchen_tamp.refinement import (
     refine_with_sesame,
 )
 
+pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
+
 PROBLEM = Path(__file__).resolve().parents[2] / "pddl" / "problem_baguette.pddl"
 SEED = 0
 

@@ -17,6 +17,8 @@ from kitchen_tamp.refinement.kitchen_sesame import KITCHEN_BUDGETS, refine_with_
 from kitchen_tamp.refinement.motion_backend import MotionBackend
 from kitchen_tamp.refinement.refine_action import ActionSampleRecord
 
+pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
+
 PROBLEM = Path(__file__).resolve().parents[2] / "pddl" / "problem.pddl"
 
 
