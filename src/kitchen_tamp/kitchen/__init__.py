@@ -8,7 +8,7 @@ targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
 """
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
-from kitchen_tamp.kitchen.action_replay import ActionReplay, SegmentTrack, first_problem, replay_action
+from kitchen_tamp.kitchen.action_replay import ActionReplay, first_problem, replay_action
 from kitchen_tamp.kitchen.contact_policy import CONTACT_PENETRATION_BOUND, check_initial_overlaps
 from kitchen_tamp.kitchen.errors import (
     InitialStateMismatchError,
@@ -18,6 +18,7 @@ from kitchen_tamp.kitchen.errors import (
     UnknownObjectError,
     UnsupportedInitialStateError,
 )
+from kitchen_tamp.kitchen.replay_track import Carried, SegmentTrack
 from kitchen_tamp.kitchen.scene.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.scene.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
@@ -36,6 +37,7 @@ __all__ = [
     "RESTING_GAP",
     "SKILLS",
     "ActionReplay",
+    "Carried",
     "Grasp",
     "InitialStateMismatchError",
     "KitchenError",

@@ -1,4 +1,5 @@
-"""Which contacts an action means, what the fingers hold, and whether a layout overlaps.
+"""Which contacts an action means, what the fingers hold, what a loose box stands on, and
+whether a layout overlaps.
 
 An action may touch only its own objects, and only down to
 ``CONTACT_PENETRATION_BOUND``: the fingers on a box it names, a box it names
@@ -9,6 +10,11 @@ gripper on that drawer's handle. Every other contact is a collision.
 The fingers hold an object when both touch it (within ``TOUCH_DISTANCE``) from
 opposite sides: what each finger touches lies between the two fingers, the
 left finger's point left of the right finger's.
+
+A loose box is supported when it rests on a region of the kitchen (a surface, a
+drawer's floor) as Ψ means it -- centre over the region, lowest corner on its
+face -- and stands upright on it (tilted at most ``SUPPORT_TILT_DEG``); a box
+that is not supported falls.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from typing import Final
 
 import numpy as np
 
+from kitchen_tamp.kitchen.abstraction import rests_on
 from kitchen_tamp.kitchen.errors import UnsupportedInitialStateError
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.world import BASE_LINK, AllowedContact, Body
@@ -27,16 +34,20 @@ from kitchen_tamp.world.contacts import closest_points, overlapping_links
 
 __all__ = [
     "CONTACT_PENETRATION_BOUND",
+    "SUPPORT_TILT_DEG",
     "TOUCH_DISTANCE",
     "HeldObject",
     "check_initial_overlaps",
     "finger_distance",
     "fingers_holding",
     "intended_contacts",
+    "support_of",
 ]
 
 TOUCH_DISTANCE: Final = 0.001
 """A finger touches an object when their shapes are at most this far apart (m)."""
+SUPPORT_TILT_DEG: Final = 5.0
+"""A box stands on a region when its axis nearest the vertical is at most this far from it."""
 
 
 def _support_links(kitchen: KitchenScene, support: str) -> tuple[str, ...]:
@@ -118,6 +129,18 @@ def finger_distance(kitchen: KitchenScene, box: str) -> float:
         )
     ]
     return min(distances, default=float("inf"))
+
+
+def support_of(kitchen: KitchenScene, box: str) -> str | None:
+    """The surface or drawer whose region ``box`` stands on now (see the module), or None."""
+    rotation = kitchen.box(box).base_pose().rotation
+    upright = float(np.max(np.abs(rotation[2, :])))
+    if upright < np.cos(np.radians(SUPPORT_TILT_DEG)):
+        return None
+    for name in (*kitchen.map.surfaces, *kitchen.map.openables):
+        if rests_on(kitchen, box, kitchen.region(name)):
+            return name
+    return None
 
 
 def check_initial_overlaps(kitchen: KitchenScene) -> None:
