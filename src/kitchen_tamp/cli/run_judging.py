@@ -209,10 +209,10 @@ def finish(report: RunReport, out_dir: Path, inputs: RunInputs, report_name: str
     files = inputs.words()
     if report.solved:
         goals = ", ".join(verification.get("goal_atoms", {}))  # type: ignore[arg-type]
-        clearance = float(verification.get("min_clearance_m", 0.0))  # type: ignore[arg-type]
-        say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free "
-            f"(min clearance {clearance * 1000:.1f} mm), goal {goals} true; {report.verdicts()}; "
-            f"{files}; report {path}")
+        clearance = verification.get("min_clearance_m")
+        margin = f"min clearance {clearance * 1000:.1f} mm" if isinstance(clearance, float) else "no motion"
+        say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free ({margin}), goal {goals} "
+            f"true; {report.verdicts()}; {files}; report {path}")
         return int(ExitCode.SOLVED)
     failure = report.failure or {}
     say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; {report.verdicts()}; {files}; "

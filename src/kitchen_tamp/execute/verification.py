@@ -105,7 +105,7 @@ class Verification:
         return {
             "verified": self.verified,
             "collision_free": self.collision_free,
-            "min_clearance_m": round(self.min_clearance_m, 6),
+            "min_clearance_m": round(self.min_clearance_m, 6) if np.isfinite(self.min_clearance_m) else None,
             "closest_approach": self.closest_approach,
             "contact_penetration_bound_m": CONTACT_PENETRATION_BOUND,
             "goal_atoms": dict(self.goal_atoms),
