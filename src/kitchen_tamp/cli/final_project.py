@@ -203,7 +203,9 @@ def run_replay(args: argparse.Namespace, started: float) -> int:
     _check_display(args)
     out_dir: Path = args.out or args.run_dir
     trajectory_file = args.run_dir / TRAJECTORY_FILE
-    run = read_trajectory(trajectory_file)
+    if args.out is not None:
+        prepare_output_folder(out_dir, "--out")
+    run = read_trajectory(trajectory_file)  # before RUN_DIR is made ready: it must exist already
     prepare_output_folder(out_dir, "--out" if args.out else "RUN_DIR")
     if run.ignored_fields:
         say(f"note: not reading {', '.join(run.ignored_fields)} from the trajectory file: the judge "
