@@ -1,9 +1,9 @@
 """An arm with a parallel gripper: joints, limits, gripper width and forward kinematics by name.
 
 An arm joint's range is the stricter of its URDF ``<limit>`` and its
-``<safety_controller>`` soft limits (for the Panda: the datasheet's limits, 1-4
-degrees inside the mechanical stops), so planners, IK and the judge all keep to
-what the robot may do, not to where it breaks.
+``<safety_controller>`` soft limits (for the Panda of ``pybullet_data``: the
+datasheet's limits, 0.0698 rad -- 4 degrees -- inside its ``<limit>`` on every joint),
+so planners, IK and the judge all keep to what the robot may do, not to where it stops.
 """
 
 from __future__ import annotations
