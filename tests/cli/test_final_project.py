@@ -274,7 +274,7 @@ def test_bad_input_exits_2_with_one_line(argv: list[str], capsys: pytest.Capture
 @pytest.mark.parametrize(
     ("argv", "named"),
     [
-        (["rrt", "--seed", "abc"], "final_project.py rrt: error: argument --seed: not an integer: 'abc'"),
+        (["rrt", "--seed", "abc"], "error: argument --seed: not an integer: 'abc' (see final_project.py rrt"),
         (["optimizes", "--waypoints", "1"], "argument --waypoints: must be at least 2, got 1"),
         (["rrt", "--frobnicate"], "unrecognized arguments: --frobnicate"),
         (["replay"], "the following arguments are required: RUN_DIR"),

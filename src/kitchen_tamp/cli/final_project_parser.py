@@ -5,25 +5,15 @@ usage stays in ``--help``."""
 from __future__ import annotations
 
 import argparse
-import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import NoReturn
 
-from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli import CommandLineParser
 from kitchen_tamp.motion import MOTION_PLANNERS, planner_options
 from kitchen_tamp.refinement.kitchen_sesame import KITCHEN_BUDGETS
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
 from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line: what is wrong, and where help is."""
-
-    def error(self, message: str) -> NoReturn:
-        print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
-        sys.exit(int(ExitCode.BAD_INPUT))
 
 
 def _integer_at_least(minimum: int) -> Callable[[str], int]:
@@ -82,7 +72,7 @@ def _add_planning_options(sub: argparse.ArgumentParser, mode: str) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = OneLineParser(
+    parser = CommandLineParser(
         prog="final_project.py",
         description="Kitchen task-and-motion planning for a Franka Panda: symbolic plan, skills, "
                     "motion planning per step, headless replay, verification.")

@@ -4,14 +4,15 @@ An output folder is made ready by creating it and writing a probe file in it
 (``prepare_output_folder``): permission bits say nothing for root, and a folder
 under ``/proc`` or on a read-only mount passes every ``os.access`` test. An
 output file (the planner's ``--plan-out``) is judged without creating anything.
-
-Plain ``os.path`` work: ``pathlib`` and ``typing`` would cost every start of the activity
-planner, which checks its ``--plan-out`` here.
 """
 
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 PROBE_NAME = ".kitchen_tamp_write_probe"
 """The file ``prepare_output_folder`` writes and removes again."""
@@ -21,44 +22,41 @@ class OutputPathError(Exception):
     """An output folder or file the program could not write (exit 2)."""
 
 
-def _nearest_existing(path: str | os.PathLike[str]) -> str:
+def _nearest_existing(path: Path) -> Path:
     """``path`` itself if it exists, else its closest existing ancestor (where a write would create it)."""
-    current = os.path.abspath(path)
-    while not os.path.exists(current) and os.path.dirname(current) != current:
-        current = os.path.dirname(current)
+    current = path.absolute()
+    while not current.exists() and current != current.parent:
+        current = current.parent
     return current
 
 
-def _check_writable(folder: str | os.PathLike[str], given: str | os.PathLike[str], option: str) -> None:
+def _check_writable(folder: Path, given: Path, option: str) -> None:
     """Raise ``OutputPathError`` (naming ``option`` and the path the user ``given``) unless we may write
     in ``folder`` or create it."""
     existing = _nearest_existing(folder)
-    if not os.path.isdir(existing):
-        where = "" if existing == os.path.abspath(given) else f"{existing} "
-        raise OutputPathError(f"{option} {os.fspath(given)}: {where}is a file, not a folder")
+    if not existing.is_dir():
+        where = "" if existing == given.absolute() else f"{existing} "
+        raise OutputPathError(f"{option} {given}: {where}is a file, not a folder")
     if not os.access(existing, os.W_OK | os.X_OK):
-        raise OutputPathError(f"{option} {os.fspath(given)}: no permission to write in {existing}")
+        raise OutputPathError(f"{option} {given}: no permission to write in {existing}")
 
 
-def prepare_output_folder(folder: str | os.PathLike[str], option: str) -> None:
+def prepare_output_folder(folder: Path, option: str) -> None:
     """Create ``folder`` (and its parents) and write and remove a probe file in it; raise
     ``OutputPathError`` naming ``option`` (the command-line option or default it came from)
     and the reason when either fails."""
     _check_writable(folder, folder, option)
-    probe = os.path.join(folder, PROBE_NAME)
+    probe = folder / PROBE_NAME
     try:
-        os.makedirs(folder, exist_ok=True)
-        with open(probe, "wb") as stream:
-            stream.write(b"")
-        os.unlink(probe)
+        folder.mkdir(parents=True, exist_ok=True)
+        probe.write_bytes(b"")
+        probe.unlink()
     except OSError as error:
-        raise OutputPathError(
-            f"{option} {os.fspath(folder)}: cannot write there ({error.strerror or error})"
-        ) from None
+        raise OutputPathError(f"{option} {folder}: cannot write there ({error.strerror or error})") from None
 
 
-def check_output_file(path: str | os.PathLike[str], option: str) -> None:
+def check_output_file(path: Path, option: str) -> None:
     """Raise ``OutputPathError`` unless a file could be written (atomically, beside itself) at ``path``."""
-    if os.path.isdir(path):
-        raise OutputPathError(f"{option} {os.fspath(path)}: is a folder, not a file")
-    _check_writable(os.path.dirname(os.path.abspath(path)), path, option)
+    if path.is_dir():
+        raise OutputPathError(f"{option} {path}: is a folder, not a file")
+    _check_writable(path.parent, path, option)
