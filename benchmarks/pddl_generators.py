@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 IPC_DIR = Path(__file__).resolve().parent / "ipc"
+KITCHEN_PROBLEMS = Path(__file__).resolve().parents[1] / "pddl"
 
 BLOCKS_DOMAIN = """(define (domain blocks)
   (:requirements :strips)
@@ -69,6 +70,12 @@ KITCHEN_STRIPS_DOMAIN = """(define (domain kitchen)
     :effect (and (boxIn ?b ?o) (armClear) (not (holding ?b)) (not (cabClear ?o)))))
 """
 """The kitchen domain without ``open``'s negative precondition, which pyperplan cannot parse."""
+
+
+def kitchen_problem(problem: str) -> tuple[str, str]:
+    """A shipped kitchen problem with ``KITCHEN_STRIPS_DOMAIN``: pyperplan's parser has no negative
+    preconditions, so every planner gets the domain without open's ``(not (opened ?o))`` (same plans)."""
+    return KITCHEN_STRIPS_DOMAIN, (KITCHEN_PROBLEMS / problem).read_text()
 
 
 def _towers(blocks: list[str], rng: np.random.Generator) -> list[list[str]]:

@@ -1,19 +1,13 @@
 """Symbolic planning speed against pyperplan and Fast Downward: whole processes, then phases in-process.
 
 First, what a user pays: each planner run as a fresh process per problem and
-search (``symbolic_process``: wall time, alternating, medians), on the kitchen,
-generated problems and real IPC problems (``benchmarks/ipc/``); ours twice, on
-new files (task cache emptied) and repeated (served from the task cache). Then the
-in-process comparison below, which leaves out process start-up and imports.
-
-For each problem and each search, our whole run (parse + translate + ground +
-search) is timed against pyperplan's (parse + ground + search) with the same
-search and heuristic, in CPU seconds, as the median of several repeats; the
-ratio is pyperplan / ours (above 1: we are faster). Our domain cache is
-cleared before every run, so each of our runs parses its domain like
-pyperplan does. Fast Downward (the binary in the ``up-fast-downward`` wheel)
-runs as a subprocess on the same files with the matching search, timed in CPU
-seconds of the child (its Python translator included), once.
+search (``symbolic_process``), on the kitchen, generated problems and real IPC
+problems (``benchmarks/ipc/``), with the verdict of the speed bar. Then the
+in-process comparison, which leaves out process start-up and imports: our run
+(parse + translate + ground + search, the domain cache cleared first) against
+pyperplan's (parse + ground + search) with the same search and heuristic, median
+CPU seconds of several repeats, ratio pyperplan / ours; Fast Downward (the
+``up-fast-downward`` wheel) once per row, CPU seconds of the child.
 
 Pairings (ours / pyperplan / Fast Downward):
 
@@ -27,21 +21,18 @@ Pairings (ours / pyperplan / Fast Downward):
 - ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
   pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
 
-Afterwards a second table splits one run per problem into phases (parse domain,
-parse problem, translate, ground; pyperplan: parse, ground).
+A last table splits one run per problem into phases.
 
     python benchmarks/symbolic.py                  # everything (about 30 minutes)
-    python benchmarks/symbolic.py --process-only   # the whole-process table only
+    python benchmarks/symbolic.py --process-only   # the whole-process table and its verdict only
     python benchmarks/symbolic.py --quick          # small problems only
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 import logging
-import math
 import os
 import re
 import resource
@@ -52,22 +43,22 @@ import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from pddl_generators import blocks_world, gripper, ipc_problem, scaled_kitchen
-from symbolic_process import process_table
+from pddl_generators import blocks_world, gripper, ipc_problem, kitchen_problem, scaled_kitchen
+from symbolic_process import fast_downward_script, geometric_mean, process_table
 
-from kitchen_tamp.planning import SearchResult, Task, plan, validate_plan
+from kitchen_tamp.planning import SEARCHES, SearchResult, Task, validate_plan
 from kitchen_tamp.planning.grounding import ground
 from kitchen_tamp.planning.loading import clear_domain_cache, domain_model, read_problem
 from kitchen_tamp.planning.schemas import translate_problem
 from kitchen_tamp.planning.search.best_first import greedy_best_first_search
 from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
 
-REPO = Path(__file__).resolve().parents[1]
 MAX_REPEATS = 21
 """Runs per row (median taken), fewer when one run is slow: see ``repeats``."""
 REPEAT_SECONDS = 2.0
@@ -90,16 +81,12 @@ PAIRINGS: dict[str, Pairing] = {
     "gbfs-plain": Pairing("gbf", "hff", False, "eager_greedy([ff()])"),
 }
 
-OUR_SEARCHES: dict[str, Callable[[Task, float], SearchResult]] = {
-    "bfs": lambda task, budget: plan(task, "bfs", time_budget=budget),
-    "astar": lambda task, budget: plan(task, "astar", time_budget=budget),
-    "ehc": lambda task, budget: plan(task, "ehc", time_budget=budget),
-    "gbfs": lambda task, budget: plan(task, "gbfs", time_budget=budget),
-    "ehc-plain": lambda task, budget: enforced_hill_climbing(task, helpful_actions=False,
-                                                             time_budget=budget),
-    "gbfs-plain": lambda task, budget: greedy_best_first_search(task, preferred_operators=False,
-                                                                time_budget=budget),
+OUR_SEARCHES: dict[str, Callable[..., SearchResult]] = {
+    **SEARCHES,
+    "ehc-plain": partial(enforced_hill_climbing, helpful_actions=False),
+    "gbfs-plain": partial(greedy_best_first_search, preferred_operators=False),
 }
+"""Each pairing's search of ours, called with the task and ``time_budget``."""
 
 
 @dataclass
@@ -128,8 +115,8 @@ def problems(quick: bool) -> list[Problem]:
                    lambda domain=domain, file=file: ipc_problem(domain, file), searches)  # type: ignore[misc]
            for domain, file, searches in IPC_PROBLEMS]
     items = [
-        Problem("kitchen", lambda: _kitchen_files("problem.pddl"), every),
-        Problem("kitchen-hard", lambda: _kitchen_files("problem_hard.pddl"), every),
+        Problem("kitchen", lambda: kitchen_problem("problem.pddl"), every),
+        Problem("kitchen-hard", lambda: kitchen_problem("problem_hard.pddl"), every),
         Problem("blocks-6", lambda: blocks_world(6, 1), every),
         Problem("gripper-6", lambda: gripper(6), every),
         Problem("kitchen-4b-5s-1d", lambda: scaled_kitchen(4, 5, 1, 0), every),
@@ -150,14 +137,6 @@ def problems(quick: bool) -> list[Problem]:
             Problem("kitchen-16b-20s-3d", lambda: scaled_kitchen(16, 20, 3, 2), guided),
         ]
     return items + (ipc[:2] if quick else ipc)
-
-
-def _kitchen_files(problem: str) -> tuple[str, str]:
-    # The pyperplan parser has no negative preconditions, so every planner gets
-    # the kitchen domain without open's (not (opened ?o)); the plans are the same.
-    from pddl_generators import KITCHEN_STRIPS_DOMAIN
-
-    return KITCHEN_STRIPS_DOMAIN, (REPO / "pddl" / problem).read_text()
 
 
 @dataclass
@@ -195,7 +174,7 @@ def run_ours_once(domain: Path, problem: Path, search: str,
     translated = clock()
     task = ground(lifted)
     grounded = clock()
-    result = OUR_SEARCHES[search](task, timeout)
+    result = OUR_SEARCHES[search](task, time_budget=timeout)
     searched = clock()
     phases = {"parse problem": parsed - start, "parse+check domain": modelled - parsed,
               "translate": translated - modelled, "ground": grounded - translated,
@@ -283,16 +262,6 @@ def run_pyperplan(domain: Path, problem: Path, search: str, timeout: float) -> R
                "" if data["length"] is not None else "pyperplan: no plan", phases, data["repeats"])
 
 
-def fast_downward_script() -> Path | None:
-    # Located without importing: the wheel's Python wrapper needs unified-planning,
-    # which we do not install; the driver script and binary are all we use.
-    spec = importlib.util.find_spec("up_fast_downward")
-    if spec is None or not spec.submodule_search_locations:
-        return None
-    script = Path(next(iter(spec.submodule_search_locations))) / "downward" / "fast-downward.py"
-    return script if script.exists() else None
-
-
 def run_fast_downward(script: Path, domain: Path, problem: Path, search: str, workdir: Path,
                       timeout: float) -> Run:
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -318,13 +287,12 @@ def _fmt(value: float | int | None, digits: int = 3) -> str:
     return f"{value:.{digits}f}" if isinstance(value, float) else str(value)
 
 
-def _ratio(ours: Run, peer: Run, timeout: float) -> tuple[str, float | None]:
+def _ratio(ours: Run, peer: Run, timeout: float) -> str:
     if ours.seconds and peer.seconds:
-        ratio = peer.seconds / ours.seconds
-        return f"{ratio:.1f}", ratio
+        return f"{peer.seconds / ours.seconds:.1f}"
     if ours.seconds and peer.note.startswith("pyperplan >"):
-        return f">{timeout / ours.seconds:.0f}", None
-    return "-", None
+        return f">{timeout / ours.seconds:.0f}"
+    return "-"
 
 
 def _phase_table(rows: list[tuple[str, Run, Run]]) -> None:
@@ -347,6 +315,56 @@ def _phase_table(rows: list[tuple[str, Run, Run]]) -> None:
               f"{ms(p, 'search'):>9} {ms(p, 'total'):>8}")
 
 
+def _write_problem(item: Problem, folder: Path) -> tuple[Path, Path]:
+    """Write a problem and its domain into ``folder``; their paths."""
+    domain_text, problem_text = item.make()
+    domain, problem = folder / f"{item.name}-domain.pddl", folder / f"{item.name}.pddl"
+    domain.write_text(domain_text)
+    problem.write_text(problem_text)
+    return domain, problem
+
+
+def in_process_table(selected: list[Problem], fd: Path | None, timeout: float) -> None:
+    """Every search of every problem in-process, ours against pyperplan's (CPU time), then the phases."""
+    header = (f"{'problem':20} {'search':10} {'ours s':>8} {'pp s':>8} {'ratio':>6} {'FD s':>7} "
+              f"{'len ours/pp/FD':>15} {'expanded ours/pp/FD':>22}")
+    print(f"\n{header}\n{'-' * len(header)}")
+    timings: list[tuple[str, float, float]] = []
+    phase_rows: list[tuple[str, Run, Run]] = []
+    failed: list[str] = []  # rows pyperplan solved and we did not
+    with tempfile.TemporaryDirectory() as tmp:
+        workdir = Path(tmp)
+        # Warm up like an import: build the Lark parsers and run every search once.
+        warm = Problem("warm", lambda: kitchen_problem("problem.pddl"), ())
+        for search in OUR_SEARCHES:
+            run_ours_once(*_write_problem(warm, workdir), search, timeout)
+        for item in selected:
+            domain, problem = _write_problem(item, workdir)
+            for search in item.searches:
+                ours = run_ours(domain, problem, search, timeout)
+                peer = run_pyperplan(domain, problem, search, timeout)
+                fd_run = run_fast_downward(fd, domain, problem, search, workdir, timeout) if fd else None
+                if ours.seconds and peer.seconds:
+                    timings.append((f"{item.name} {search}", ours.seconds, peer.seconds))
+                elif ours.seconds is None and peer.seconds is not None:
+                    failed.append(f"{item.name} {search}")
+                runs = [r for r in (ours, peer, fd_run) if r is not None]
+                print(f"{item.name:20} {search:10} {_fmt(ours.seconds):>8} {_fmt(peer.seconds):>8} "
+                      f"{_ratio(ours, peer, timeout):>6} {_fmt(fd_run.seconds if fd_run else None):>7} "
+                      f"{'/'.join(_fmt(r.length) for r in runs):>15} "
+                      f"{'/'.join(_fmt(r.expanded) for r in runs):>22} "
+                      f"{' '.join(r.note for r in runs if r.note)}", flush=True)
+                if search == item.searches[0]:
+                    phase_rows.append((f"{item.name:20} {search:10}", ours, peer))
+    if timings:  # the bar is the whole-process table's; this one shows where the time goes
+        ratios = [peer / ours for _, ours, peer in timings]
+        slower = [row for row, ours, peer in timings if peer < ours] + failed
+        print(f"\nin-process pyperplan / ours (median CPU time, parse + ground + search): geometric mean "
+              f"{geometric_mean(ratios):.1f}x, minimum {min(ratios):.1f}x over {len(ratios)} rows both "
+              f"solved; slower on: {', '.join(slower) if slower else 'none'}")
+    _phase_table(phase_rows)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small problems only")
@@ -367,68 +385,12 @@ def main() -> int:
     fd = None if args.no_fd else fast_downward_script()
     selected = [p for p in problems(args.quick) if not args.only or p.name in args.only.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
-        rows = []
-        for item in selected:
-            domain_text, problem_text = item.make()
-            domain, problem = Path(tmp) / f"{item.name}-domain.pddl", Path(tmp) / f"{item.name}.pddl"
-            domain.write_text(domain_text)
-            problem.write_text(problem_text)
-            rows.append((item.name, domain, problem, item.searches))
+        rows = [(item.name, *_write_problem(item, Path(tmp)), item.searches) for item in selected]
         # One run first, so that byte code and our grammar cache are built (as after any first run).
         run_ours_once(rows[0][1], rows[0][2], "bfs", args.timeout)
         process_table(rows, Path(tmp), fd, args.timeout, args.rounds)
-    if args.process_only:
-        return 0
-    print()
-
-    header = (f"{'problem':20} {'search':10} {'ours s':>8} {'pp s':>8} {'ratio':>6} {'FD s':>7} "
-              f"{'len ours/pp/FD':>15} {'expanded ours/pp/FD':>22}")
-    print(header)
-    print("-" * len(header))
-    ratios: list[tuple[str, float]] = []
-    phase_rows: list[tuple[str, Run, Run]] = []
-    failures: list[str] = []  # rows pyperplan solved and we did not
-    with tempfile.TemporaryDirectory() as tmp:
-        workdir = Path(tmp)
-        # Warm up like an import: build the Lark parsers and run every search once.
-        warm_domain, warm_problem = workdir / "warm-domain.pddl", workdir / "warm.pddl"
-        warm_domain.write_text(_kitchen_files("problem.pddl")[0])
-        warm_problem.write_text(_kitchen_files("problem.pddl")[1])
-        for search in OUR_SEARCHES:
-            run_ours_once(warm_domain, warm_problem, search, args.timeout)
-        for item in selected:
-            domain_text, problem_text = item.make()
-            domain, problem = workdir / f"{item.name}-domain.pddl", workdir / f"{item.name}.pddl"
-            domain.write_text(domain_text)
-            problem.write_text(problem_text)
-            for search in item.searches:
-                ours = run_ours(domain, problem, search, args.timeout)
-                peer = run_pyperplan(domain, problem, search, args.timeout)
-                fd_run = (run_fast_downward(fd, domain, problem, search, workdir, args.timeout)
-                          if fd else None)
-                shown, ratio = _ratio(ours, peer, args.timeout)
-                if ratio is not None:
-                    ratios.append((f"{item.name} {search}", ratio))
-                runs = [r for r in (ours, peer, fd_run) if r is not None]
-                lengths = "/".join(_fmt(r.length) for r in runs)
-                expanded = "/".join(_fmt(r.expanded) for r in runs)
-                notes = " ".join(r.note for r in runs if r.note)
-                print(f"{item.name:20} {search:10} {_fmt(ours.seconds):>8} {_fmt(peer.seconds):>8} "
-                      f"{shown:>6} {_fmt(fd_run.seconds if fd_run else None):>7} {lengths:>15} "
-                      f"{expanded:>22} {notes}", flush=True)
-                if search == item.searches[0]:
-                    phase_rows.append((f"{item.name:20} {search:10}", ours, peer))
-                if ours.seconds is None and peer.seconds is not None:
-                    failures.append(f"{item.name} {search}")
-    if ratios:
-        values = [r for _, r in ratios]
-        geometric = math.exp(sum(math.log(r) for r in values) / len(values))
-        slower = [name for name, r in ratios if r < 1.0] + failures
-        print(f"\nspeed-up over pyperplan (median CPU time, parse + ground + search): geometric mean "
-              f"{geometric:.1f}x, minimum {min(values):.1f}x, at least 5x on "
-              f"{sum(r >= 5 for r in values)} of {len(values)} rows where both solved; "
-              f"slower on: {', '.join(slower) if slower else 'none'}")
-    _phase_table(phase_rows)
+    if not args.process_only:
+        in_process_table(selected, fd, args.timeout)
     return 0
 
 

@@ -126,16 +126,51 @@ def test_bad_domain_names_the_undeclared_variable(
     assert "domain.pddl:" in err and "action 'pickUp' uses undeclared variable '?x'" in err
 
 
-def test_missing_file_and_bad_options_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
+def test_missing_files_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
     code, _, err = run_main(capsys, "no/such/file.pddl")
     assert code == 2 and "problem file not found" in err
     code, _, err = run_main(capsys, "--domain", "nowhere.pddl")
     assert code == 2 and "domain file not found" in err
-    code, _, err = run_main(capsys, "--timeout", "-1")
-    assert code == 2
+
+
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        (["--timeout", "abc"], "argument --timeout: not a number of seconds: 'abc'"),
+        (["--timeout", "-1"], "argument --timeout: must be a positive number of seconds, got '-1'"),
+        (["--timeout", "nan"], "argument --timeout: must be a positive number of seconds"),
+        (["--planner", "dijkstra"], "argument --planner: invalid choice: 'dijkstra'"),
+        (["--fast"], "unrecognized arguments: --fast"),
+        (["--domain"], "argument --domain: expected one argument"),
+        (["a.pddl", "b.pddl"], "unrecognized arguments: b.pddl"),
+    ],
+)
+def test_a_command_line_mistake_is_one_line_naming_the_option_and_exit_2(
+        capsys: pytest.CaptureFixture[str], argv: list[str], named: str) -> None:
     with pytest.raises(SystemExit) as exit_info:
-        main(["--planner", "dijkstra"])
+        main(argv)
     assert exit_info.value.code == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: {named}")
+    assert lines[0].endswith("(see activity_planning.py --help)")  # the usage stays in --help
+
+
+def test_help_shows_the_usage_and_every_option(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["--help"])
+    assert exit_info.value.code == 0
+    out = capsys.readouterr().out
+    assert out.startswith("usage: activity_planning.py")
+    for option in ("--domain", "--planner", "--plan-out", "--json", "--timeout", "bfs,ehc,gbfs,astar,all"):
+        assert option in out
+
+
+def test_abbreviations_and_equals_forms_are_read(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run_main(capsys, "--dom", DOMAIN, "--planner=bfs", "--tim", "30",
+                            str(KITCHEN / "problem_hard.pddl"))
+    assert code == 0 and "BFS plan" in out and "EHC plan" not in out and "length 7" in out
 
 
 def test_the_planner_cli_imports_no_numpy_pybullet_or_drake(tmp_path: Path) -> None:
@@ -189,18 +224,15 @@ def test_ctrl_c_says_interrupted_and_exits_130(tmp_path: Path) -> None:
     assert "BFS plan" not in run.stdout
 
 
-def test_a_run_imports_only_what_it_needs(tmp_path: Path) -> None:
-    # What a run of the kitchen must not load, first or repeated: each of these costs milliseconds of every
-    # start (argparse with re and gettext, pathlib with urllib, importlib.resources with zipfile and
-    # tempfile, traceback with linecache and tokenize, typing), and the parser is not needed at all.
+def test_a_run_on_files_the_fast_reader_takes_loads_no_parser(tmp_path: Path) -> None:
+    # The first run reads the kitchen with the fast reader (and stores the task), the second loads the
+    # task cache: neither needs Lark or the pddl package (about 75 ms of start-up), nor anything heavy.
     probe = (
         "import sys\n"
-        "at_start = set(sys.modules)\n"
         "from kitchen_tamp.cli.activity_planning import main\n"
         "code = main(['problem_hard.pddl', '--planner', 'bfs', '--timeout', '60'])\n"
-        "avoidable = {'argparse', 'pathlib', 'importlib.resources', 'traceback', 'typing', 'tempfile',\n"
-        "             'shutil', 'json', 'lark', 'pddl'}\n"
-        "print('avoidable modules:', sorted((set(sys.modules) - at_start) & avoidable))\n"
+        "avoidable = {'lark', 'pddl', 'numpy', 'pybullet', 'pydrake'}\n"
+        "print('avoidable modules:', sorted({m.split('.')[0] for m in sys.modules} & avoidable))\n"
         "sys.exit(code)\n")
     env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}
     runs = [subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, capture_output=True, text=True,
@@ -208,5 +240,23 @@ def test_a_run_imports_only_what_it_needs(tmp_path: Path) -> None:
     for run in runs:
         assert run.returncode == 0, run.stderr
         assert "7. placeOn spam stove" in run.stdout
-    for run in runs:  # the first run read the files (without the pddl package), the second the task cache
         assert "avoidable modules: []" in run.stdout, run.stdout
+    assert len(list((tmp_path / "cache" / "kitchen_tamp" / "tasks").iterdir())) == 1
+
+
+def test_a_file_the_fast_reader_leaves_is_read_by_the_pddl_package(tmp_path: Path) -> None:
+    # ':requirements :adl' is outside the fast reader's fragment: the pddl package reads the file.
+    domain = (KITCHEN / "domain.pddl").read_text()
+    assert ":requirements" in domain
+    (tmp_path / "domain.pddl").write_text(domain.replace(":requirements", ":requirements :adl", 1))
+    (tmp_path / "problem.pddl").write_text((KITCHEN / "problem.pddl").read_text())
+    probe = (
+        "import sys\n"
+        "from kitchen_tamp.cli.activity_planning import main\n"
+        "code = main(['problem.pddl', '--planner', 'bfs'])\n"
+        "print('parser loaded:', 'pddl' in sys.modules and 'lark' in sys.modules)\n"
+        "sys.exit(code)\n")
+    run = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, capture_output=True, text=True,
+                         env={**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")})
+    assert run.returncode == 0, run.stderr
+    assert "length 5" in run.stdout and "parser loaded: True" in run.stdout

@@ -20,15 +20,13 @@ def loads(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> list[Path]:
     """An empty cache under ``tmp_path``; records each problem that had to be loaded from its files."""
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     loaded: list[Path] = []
-    from kitchen_tamp.planning import loading
-
-    original = loading.load_task
+    original = task_cache.load_task
 
     def counting_load(problem: str | Path, domain: str | Path | None = None) -> Task:
         loaded.append(Path(problem))
         return original(problem, domain)
 
-    monkeypatch.setattr(loading, "load_task", counting_load)
+    monkeypatch.setattr(task_cache, "load_task", counting_load)
     return loaded
 
 

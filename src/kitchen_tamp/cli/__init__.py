@@ -2,25 +2,33 @@
 
 from __future__ import annotations
 
+import argparse
 import sys
+from collections.abc import Callable
+from enum import IntEnum
+from typing import NoReturn
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from collections.abc import Callable
 
-
-class ExitCode:
-    """Exit codes shared by both command-line programs.
-
-    Plain ints, not an ``IntEnum``: ``enum`` (with ``functools`` and ``collections``)
-    would be a few milliseconds of every activity planner start.
-    """
+class ExitCode(IntEnum):
+    """Exit codes shared by both command-line programs."""
 
     SOLVED = 0
     NO_PLAN = 1  # no plan exists, or refinement/search failed within its budget
     BAD_INPUT = 2  # usage, unreadable or malformed file, unwritable output, a setup that cannot run
     INTERNAL_ERROR = 3
     INTERRUPTED = 130  # Ctrl-C: 128 + SIGINT, as shells report it
+
+
+class CommandLineParser(argparse.ArgumentParser):
+    """argparse, with a command-line mistake told in one line (exit 2) instead of usage and a line.
+
+    The line is argparse's own message, which names the option (``argument
+    --timeout: invalid float value: 'soon'``, ``unrecognized arguments: --fast``);
+    the usage stays in ``--help``. Sub-command parsers are of this class too.
+    """
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(int(ExitCode.BAD_INPUT), f"error: {message} (see {self.prog} --help)\n")
 
 
 def exit_code_of(body: Callable[[], int], bad_input_line: Callable[[Exception], str | None]) -> int:
@@ -40,7 +48,7 @@ def exit_code_of(body: Callable[[], int], bad_input_line: Callable[[Exception], 
         if line is not None:
             print(f"error: {line}", file=sys.stderr)
             return int(ExitCode.BAD_INPUT)
-        import traceback  # only for a bug: traceback loads linecache and tokenize, ms of every start
+        import traceback  # only for a bug
 
         traceback.print_exc()
         print(f"internal error: {type(error).__name__}: {error}", file=sys.stderr)

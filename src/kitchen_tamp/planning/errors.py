@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from pathlib import Path
+from pathlib import Path
 
 
 class PlanningInputError(Exception):
@@ -18,8 +16,6 @@ class PlanningInputError(Exception):
         self, message: str, path: Path | str | None = None, line: int | None = None,
         column: int | None = None,
     ) -> None:
-        from pathlib import Path  # on use: a run without an error never loads pathlib
-
         self.path = Path(path) if path is not None else None
         self.line = line
         self.column = column

@@ -18,10 +18,10 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from itertools import product, repeat
 from operator import itemgetter, or_
 
-from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.schemas import ActionSchema, LiftedTask
 from kitchen_tamp.planning.task import GroundAction, Task, mask_of
 
@@ -35,7 +35,8 @@ Test = tuple[int, int, bool]
 """Slots ``a`` and ``b`` must hold the same object (True) or different objects (False)."""
 
 
-class _Step(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class _Step:
     """Matching one precondition literal against one fact's arguments.
 
     ``checks`` are (argument position, slot) pairs whose slot is already bound,
@@ -44,9 +45,6 @@ class _Step(FrozenRecord):
     ``lookup`` is the (position, slot) facts are looked up by, or None to scan.
     """
 
-    __slots__ = (  # noqa: RUF023 (the order of __init__)
-        "predicate", "checks", "assigns", "repeats", "tests", "lookup"
-    )
     predicate: str
     checks: tuple[tuple[int, int], ...]
     assigns: tuple[tuple[int, int], ...]
@@ -54,26 +52,15 @@ class _Step(FrozenRecord):
     tests: tuple[Test, ...]
     lookup: tuple[int, int] | None
 
-    def __init__(self, predicate: str, checks: tuple[tuple[int, int], ...],
-                 assigns: tuple[tuple[int, int], ...],
-                 repeats: tuple[tuple[int, int], ...], tests: tuple[Test, ...],
-                 lookup: tuple[int, int] | None) -> None:
-        self._set_fields(predicate=predicate, checks=checks, assigns=assigns, repeats=repeats, tests=tests,
-                         lookup=lookup)
 
-
-class _Trigger(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class _Trigger:
     """How to complete a binding when a new fact matches precondition ``first``."""
 
-    __slots__ = ("schema", "first", "rest", "final_tests")  # noqa: RUF023 (the order of __init__)
     schema: int
     first: _Step
     rest: tuple[_Step, ...]
     final_tests: tuple[Test, ...]
-
-    def __init__(self, schema: int, first: _Step, rest: tuple[_Step, ...],
-                 final_tests: tuple[Test, ...]) -> None:
-        self._set_fields(schema=schema, first=first, rest=rest, final_tests=final_tests)
 
 
 class _CompiledSchema:

@@ -35,10 +35,9 @@ plans); h_add and h_FF are not, but guide greedy search much better.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Literal
 
 from kitchen_tamp.planning.task import State, Task, bits, mask_of
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 
 INFINITY = float("inf")
 
@@ -48,12 +47,11 @@ UNSETTLED = 1 << 40
 If some cost reaches ``UNSETTLED`` divided by the most preconditions of an
 action (only in contrived tasks), the exploration is repeated with its square."""
 
-if TYPE_CHECKING:
-    from typing import Literal
+HeuristicName = Literal["hmax", "hadd", "hff"]
 
-    HeuristicName = Literal["hmax", "hadd", "hff"]
-    RelaxedPlanSupporters = Literal["hadd", "ff"]
-    """Where h_FF's relaxed plan takes its achievers from: h_add's best supporters or FF's planning graph."""
+RelaxedPlanSupporters = Literal["hadd", "ff"]
+"""Where h_FF's relaxed plan takes its achievers from: h_add's best supporters or FF's planning graph."""
+
 Heuristic = Callable[[State], float]
 HelpfulHeuristic = Callable[[State], tuple[float, int]]
 """h_FF with helpful actions: (h, bitset over action indices of the helpful actions)."""
@@ -91,7 +89,7 @@ def _entries_by_key(task: Task, entries: list[Entry]) -> KeyedEntries:
     mask of key atoms, the groups by key bit, and the actions without
     preconditions.
     """
-    keys = task.key_atoms()
+    keys = task.key_atoms
     keyed: dict[int, list[Entry]] = {}
     unkeyed: list[Entry] = []
     for entry in entries:

@@ -2,7 +2,7 @@
 
 Each file is read by ``strips_text_reader`` when it can (the STRIPS files we
 plan on, in a millisecond or two without importing Lark or the ``pddl``
-package), and otherwise by the ``pddl`` package (``pddl_files``). A file the
+package), and otherwise by the ``pddl`` package (``reading.package_reader``). A file the
 fast reader takes but ``schemas`` finds a mistake in is read again by the
 ``pddl`` package, so every error a user sees comes from the package's reading,
 as it did before the fast reader existed.
@@ -15,22 +15,19 @@ and a domain file that has not changed is not read again.
 
 from __future__ import annotations
 
-import os
 from functools import lru_cache
+from pathlib import Path
 
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.grounding import ground
-from kitchen_tamp.planning.reading.paths import read_pddl, resolve_problem_file
-from kitchen_tamp.planning.reading.source import PddlSource
+from kitchen_tamp.planning.reading.source import PddlSource, read_pddl
 from kitchen_tamp.planning.reading.strips_text_reader import read_domain_text, read_problem_text
+from kitchen_tamp.planning.reading.syntax import ProblemSyntax
 from kitchen_tamp.planning.schemas import DomainModel, LiftedTask, translate_problem
+from kitchen_tamp.planning.task import Task
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from pathlib import Path
-
-    from kitchen_tamp.planning.reading.syntax import ProblemSyntax
-    from kitchen_tamp.planning.task import Task
+DOMAIN_FILE = "domain.pddl"
+"""The domain a problem file goes with when none is named: this file beside it."""
 
 DOMAIN_CACHE_SIZE = 32
 
@@ -96,15 +93,18 @@ def lifted_task(problem_path: str | Path, domain_path: str | Path) -> LiftedTask
     return translate_problem(domain_model(domain_path), problem, source)
 
 
+def default_domain(problem_path: str | Path) -> Path:
+    """The domain file of a problem when none is named: ``domain.pddl`` beside it."""
+    return Path(problem_path).parent / DOMAIN_FILE
+
+
 def load_task(problem_path: str | Path, domain_path: str | Path | None = None) -> Task:
     """Parse, check and ground a PDDL problem.
 
-    A bare problem file name that does not exist in the current directory is
-    looked up in the repository's ``pddl/``; the domain defaults to
-    ``domain.pddl`` beside the problem. Raises ``PlanningInputError`` for any
-    problem with the files.
+    The paths are taken as given (a caller that looks bare names up somewhere,
+    such as the command lines in the shipped kitchens, does so first); the
+    domain defaults to ``domain.pddl`` beside the problem. Raises
+    ``PlanningInputError`` for any problem with the files.
     """
-    problem_file = resolve_problem_file(problem_path)  # strings: the planner's start-up does without pathlib
-    domain_file = (os.fspath(domain_path) if domain_path is not None
-                   else os.path.join(os.path.dirname(problem_file), "domain.pddl"))
-    return ground(lifted_task(problem_file, domain_file))
+    domain = domain_path if domain_path is not None else default_domain(problem_path)
+    return ground(lifted_task(problem_path, domain))

@@ -1,4 +1,4 @@
-"""Lifted action schemas and the problem's facts, checked and translated from ``pddl_syntax`` records.
+"""Lifted action schemas and the problem's facts, checked and translated from ``reading.syntax`` records.
 
 This is where the STRIPS fragment we support is enforced (typing, constants,
 negative preconditions, equality, conjunctive goals with negated literals) and
@@ -6,7 +6,7 @@ where names are checked against their declarations: an undeclared predicate,
 object, type or variable becomes a ``PlanningInputError`` that names it and the
 line it is on. PDDL names are case-insensitive; we keep the spelling of the
 declaration. The records come from either reader (``strips_text_reader`` or
-the ``pddl`` package through ``pddl_files``); what is checked here does not
+the ``pddl`` package through ``reading.package_reader``); what is checked here does not
 depend on which.
 
 The work is split in two: ``DomainModel`` checks and translates what depends on
@@ -17,13 +17,13 @@ problem's objects, facts and goal.
 
 from __future__ import annotations
 
-from kitchen_tamp.planning.frozen_record import FrozenRecord
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
 from kitchen_tamp.planning.reading.syntax import EQUALITY, ROOT_TYPE
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
 if TYPE_CHECKING:
-    from collections.abc import Iterable, Mapping
-
     from kitchen_tamp.planning.reading.source import PddlSource
     from kitchen_tamp.planning.reading.syntax import ActionSyntax, DomainSyntax, ProblemSyntax, SyntaxLiteral
     from kitchen_tamp.planning.task import Atom
@@ -32,7 +32,8 @@ Literal = tuple[str, tuple[str, ...]]
 """A lifted atom (predicate, terms); a term starting with ``?`` is a variable."""
 
 
-class ActionSchema(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class ActionSchema:
     """A lifted STRIPS action.
 
     ``candidates[i]`` lists the objects parameter ``i`` may take (its type,
@@ -40,9 +41,6 @@ class ActionSchema(FrozenRecord):
     terms that must (not) be the same object.
     """
 
-    __slots__ = (  # noqa: RUF023 (the order of __init__)
-        "name", "parameters", "candidates", "pre", "pre_neg", "equal", "not_equal", "add", "delete"
-    )
     name: str
     parameters: tuple[str, ...]
     candidates: tuple[tuple[str, ...], ...]
@@ -53,20 +51,11 @@ class ActionSchema(FrozenRecord):
     add: tuple[Literal, ...]
     delete: tuple[Literal, ...]
 
-    def __init__(self, name: str, parameters: tuple[str, ...], candidates: tuple[tuple[str, ...], ...],
-                 pre: tuple[Literal, ...], pre_neg: tuple[Literal, ...], equal: tuple[tuple[str, str], ...],
-                 not_equal: tuple[tuple[str, str], ...], add: tuple[Literal, ...],
-                 delete: tuple[Literal, ...]) -> None:
-        self._set_fields(name=name, parameters=parameters, candidates=candidates, pre=pre, pre_neg=pre_neg,
-                         equal=equal, not_equal=not_equal, add=add, delete=delete)
 
-
-class LiftedTask(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class LiftedTask:
     """Everything grounding needs, with names checked and spelled as declared."""
 
-    __slots__ = (  # noqa: RUF023 (the order of __init__)
-        "domain_name", "problem_name", "objects", "predicates", "schemas", "init", "goal", "goal_neg"
-    )
     domain_name: str
     problem_name: str
     objects: Mapping[str, str]
@@ -75,15 +64,6 @@ class LiftedTask(FrozenRecord):
     init: frozenset[Atom]
     goal: frozenset[Atom]
     goal_neg: frozenset[Atom]
-
-    def __init__(self, domain_name: str, problem_name: str, objects: Mapping[str, str],
-                 predicates: Mapping[str, int], schemas: tuple[ActionSchema, ...], init: frozenset[Atom],
-                 goal: frozenset[Atom], goal_neg: frozenset[Atom]) -> None:
-        self._set_fields(domain_name=domain_name, problem_name=problem_name, objects=objects,
-                         predicates=predicates, schemas=schemas, init=init, goal=goal, goal_neg=goal_neg)
-
-    def __hash__(self) -> int:  # the mappings are not hashable
-        return hash((self.domain_name, self.problem_name, self.schemas, self.init, self.goal, self.goal_neg))
 
 
 class _Names:
@@ -109,12 +89,10 @@ def _type_ancestors(types: Mapping[str, str | None]) -> dict[str, frozenset[str]
     return result
 
 
-class _LiftedAction(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class _LiftedAction:
     """An action schema before a problem tells which objects its parameters may take."""
 
-    __slots__ = (  # noqa: RUF023 (the order of __init__)
-        "name", "parameters", "parameter_types", "pre", "pre_neg", "equal", "not_equal", "add", "delete"
-    )
     name: str
     parameters: tuple[str, ...]
     parameter_types: tuple[frozenset[str], ...]
@@ -124,13 +102,6 @@ class _LiftedAction(FrozenRecord):
     not_equal: tuple[tuple[str, str], ...]
     add: tuple[Literal, ...]
     delete: tuple[Literal, ...]
-
-    def __init__(self, name: str, parameters: tuple[str, ...], parameter_types: tuple[frozenset[str], ...],
-                 pre: tuple[Literal, ...], pre_neg: tuple[Literal, ...], equal: tuple[tuple[str, str], ...],
-                 not_equal: tuple[tuple[str, str], ...], add: tuple[Literal, ...],
-                 delete: tuple[Literal, ...]) -> None:
-        self._set_fields(name=name, parameters=parameters, parameter_types=parameter_types, pre=pre,
-                         pre_neg=pre_neg, equal=equal, not_equal=not_equal, add=add, delete=delete)
 
 
 class DomainModel:

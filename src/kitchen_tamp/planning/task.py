@@ -2,17 +2,14 @@
 
 Atoms are numbered; a state is a Python ``int`` used as a bitset (bit ``i`` set
 means atom ``i`` holds). Bitsets make applicability a mask test, successors two
-bit operations, and states hashable for free; see ``benchmarks/symbolic.py`` for
-the measured difference against frozensets of strings.
+bit operations, and states hashable for free.
 """
 
 from __future__ import annotations
 
-from kitchen_tamp.planning.frozen_record import FrozenRecord
-
-TYPE_CHECKING = False
-if TYPE_CHECKING:  # the planner's start-up path does not pay for collections.abc
-    from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 Atom = tuple[str, ...]
 """A ground atom as (predicate, arg, ...), e.g. ``("boxOn", "sugar", "stove")``."""
@@ -44,19 +41,13 @@ def mask_of(ids: Iterable[int]) -> int:
     return mask
 
 
-_ACTION_FIELDS = ("name", "args", "pre", "pre_neg", "add", "delete", "pre_ids", "add_ids")
-
-
-class GroundAction(FrozenRecord):
-    """One grounded operator with unit cost (an immutable record).
+@dataclass(frozen=True, slots=True)
+class GroundAction:
+    """One grounded operator with unit cost.
 
     ``pre``/``pre_neg`` are the atoms that must hold / must not hold, ``add`` and
     ``delete`` its effects, all as bitsets over the task's atom ids. The id tuples
     are the same sets, kept for heuristics that loop over single atoms.
-
-    Not a dataclass: ``dataclasses`` loads ``inspect``, a fifth of a small planner
-    run (``kitchen_tamp.planning.frozen_record``). The fields live in the instance
-    dictionary, filled in one call: grounding and the task cache build thousands.
     """
 
     name: str
@@ -67,14 +58,6 @@ class GroundAction(FrozenRecord):
     delete: int
     pre_ids: tuple[int, ...]
     add_ids: tuple[int, ...]
-
-    def __init__(self, name: str, args: tuple[str, ...], pre: int, pre_neg: int, add: int, delete: int,
-                 pre_ids: tuple[int, ...], add_ids: tuple[int, ...]) -> None:
-        self.__dict__.update(name=name, args=args, pre=pre, pre_neg=pre_neg, add=add, delete=delete,
-                             pre_ids=pre_ids, add_ids=add_ids)
-
-    def _field_names(self) -> tuple[str, ...]:
-        return _ACTION_FIELDS
 
     def __str__(self) -> str:
         return " ".join((self.name, *self.args))
@@ -104,17 +87,15 @@ actions without positive preconditions. A child is ``(state & keep) | add``.
 """
 
 
-_TASK_FIELDS = ("name", "domain_name", "objects", "init_atoms", "goal_atoms", "negative_goal_atoms", "atoms",
-                "initial_state", "goal", "goal_neg", "actions", "unreachable_goal_atoms")
-
-
-class Task(FrozenRecord):
-    """A grounded planning task (an immutable record, like ``GroundAction``).
+@dataclass(frozen=True)
+class Task:
+    """A grounded planning task.
 
     ``init_atoms`` is the problem's ``:init`` exactly as written (static atoms
     included); ``atoms`` holds only the fluent atoms that are relaxed-reachable,
-    which are the ones states are made of. Tables derived from the task are
-    cached in its instance dictionary beside the fields.
+    which are the ones states are made of. Tables derived from the task
+    (``atom_ids``, ``key_atoms``, ``successor_table``) are built on first use
+    and kept beside the fields.
     """
 
     name: str
@@ -128,33 +109,16 @@ class Task(FrozenRecord):
     goal: int
     goal_neg: int
     actions: tuple[GroundAction, ...]
-    unreachable_goal_atoms: frozenset[Atom]
-
-    def __init__(self, name: str, domain_name: str, objects: Mapping[str, str], init_atoms: frozenset[Atom],
-                 goal_atoms: frozenset[Atom], negative_goal_atoms: frozenset[Atom], atoms: tuple[Atom, ...],
-                 initial_state: State, goal: int, goal_neg: int, actions: tuple[GroundAction, ...],
-                 unreachable_goal_atoms: frozenset[Atom] = frozenset()) -> None:
-        self.__dict__.update(name=name, domain_name=domain_name, objects=objects, init_atoms=init_atoms,
-                             goal_atoms=goal_atoms, negative_goal_atoms=negative_goal_atoms, atoms=atoms,
-                             initial_state=initial_state, goal=goal, goal_neg=goal_neg, actions=actions,
-                             unreachable_goal_atoms=unreachable_goal_atoms)
-
-    def _field_names(self) -> tuple[str, ...]:
-        return _TASK_FIELDS
+    unreachable_goal_atoms: frozenset[Atom] = field(default_factory=frozenset)
 
     def starting_from(self, state: State) -> Task:
         """The same task from another initial state (derived tables are rebuilt when asked for)."""
-        return Task(self.name, self.domain_name, self.objects, self.init_atoms, self.goal_atoms,
-                    self.negative_goal_atoms, self.atoms, state, self.goal, self.goal_neg, self.actions,
-                    self.unreachable_goal_atoms)
+        return replace(self, initial_state=state)
 
-    @property
+    @cached_property
     def atom_ids(self) -> Mapping[Atom, int]:
-        ids = self.__dict__.get("_atom_ids")
-        if ids is None:
-            ids = {atom: i for i, atom in enumerate(self.atoms)}
-            object.__setattr__(self, "_atom_ids", ids)
-        return ids
+        """Each fluent atom's id."""
+        return {atom: i for i, atom in enumerate(self.atoms)}
 
     @property
     def trivially_unsolvable(self) -> bool:
@@ -168,45 +132,39 @@ class Task(FrozenRecord):
             and not state & self.goal_neg
         )
 
+    @cached_property
     def key_atoms(self) -> list[int]:
         """Each action's key atom: its precondition atom used by the fewest actions (-1: none).
 
         An action cannot apply (or fire, in a relaxed exploration) before its
         key atom holds, so grouping actions by key lets a loop skip the groups
-        whose key is false. Built once per task.
+        whose key is false.
         """
-        keys = self.__dict__.get("_key_atoms")
-        if keys is None:
-            uses = [0] * len(self.atoms)
-            for action in self.actions:
-                for atom in action.pre_ids:
-                    uses[atom] += 1
-            keys = [min(action.pre_ids, key=lambda atom: (uses[atom], atom)) if action.pre_ids else -1
-                    for action in self.actions]
-            object.__setattr__(self, "_key_atoms", keys)
-        return keys
+        uses = [0] * len(self.atoms)
+        for action in self.actions:
+            for atom in action.pre_ids:
+                uses[atom] += 1
+        return [min(action.pre_ids, key=lambda atom: (uses[atom], atom)) if action.pre_ids else -1
+                for action in self.actions]
 
+    @cached_property
     def successor_table(self) -> SuccessorTable:
-        """Actions keyed by their least common precondition atom, built once per task.
+        """Actions keyed by their least common precondition atom.
 
         A state then only tests the actions whose key atom it contains, instead
         of every action. The searches loop over this table directly; see
         ``SuccessorTable`` for the layout and ``successors`` for the loop.
         """
-        table = self.__dict__.get("_successor_table")
-        if table is None:
-            keyed: dict[int, list[ActionEntry]] = {}
-            unconditional: list[ActionEntry] = []
-            for index, (action, key) in enumerate(zip(self.actions, self.key_atoms(), strict=True)):
-                entry = (action.pre, action.pre_neg, ~action.delete, action.add, index)
-                if key >= 0:
-                    keyed.setdefault(1 << key, []).append(entry)
-                else:
-                    unconditional.append(entry)
-            table = (mask_of(k.bit_length() - 1 for k in keyed), {k: tuple(v) for k, v in keyed.items()},
-                     tuple(unconditional))
-            object.__setattr__(self, "_successor_table", table)
-        return table
+        keyed: dict[int, list[ActionEntry]] = {}
+        unconditional: list[ActionEntry] = []
+        for index, (action, key) in enumerate(zip(self.actions, self.key_atoms, strict=True)):
+            entry = (action.pre, action.pre_neg, ~action.delete, action.add, index)
+            if key >= 0:
+                keyed.setdefault(1 << key, []).append(entry)
+            else:
+                unconditional.append(entry)
+        return (mask_of(k.bit_length() - 1 for k in keyed), {k: tuple(v) for k, v in keyed.items()},
+                tuple(unconditional))
 
     def applicable_actions(self, state: State) -> Iterator[GroundAction]:
         """The actions applicable in ``state``, in a fixed order for a given state."""
@@ -221,7 +179,7 @@ class Task(FrozenRecord):
 
     def successor_indices(self, state: State) -> list[tuple[State, int]]:
         """``(child, action index)`` for each applicable action, in the order of ``successors``."""
-        key_mask, keyed, unconditional = self.successor_table()
+        key_mask, keyed, unconditional = self.successor_table
         out = [((state & keep) | add, index) for pre, neg, keep, add, index in unconditional
                if not state & neg]
         keys = state & key_mask

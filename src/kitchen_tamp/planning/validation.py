@@ -2,27 +2,23 @@
 
 from __future__ import annotations
 
-from kitchen_tamp.planning.frozen_record import FrozenRecord
-from kitchen_tamp.planning.task import Atom, GroundAction, State, Task, atom_text, bits
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from collections.abc import Iterable, Sequence
+from kitchen_tamp.planning.task import Atom, GroundAction, State, Task, atom_text, bits
 
 PlanStep = tuple[str, tuple[str, ...]]
 
 
-class PlanValidation(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class PlanValidation:
     """Whether a plan is valid, why not, the state it ends in and the step that failed (1-based)."""
 
-    __slots__ = ("valid", "message", "final_state", "failed_step")  # noqa: RUF023 (the order of __init__)
     valid: bool
     message: str
     final_state: State
-    failed_step: int | None
-
-    def __init__(self, valid: bool, message: str, final_state: State, failed_step: int | None = None) -> None:
-        self._set_fields(valid=valid, message=message, final_state=final_state, failed_step=failed_step)
+    failed_step: int | None = None
 
 
 def _as_step(step: GroundAction | PlanStep) -> PlanStep:
@@ -99,8 +95,6 @@ PLAN_STEP_PATTERN = r"^\s*\(([^()]+)\)\s*(;.*)?$"
 
 def parse_plan_text(text: str) -> list[PlanStep]:
     """Read an IPC plan file: ``(name arg ...)`` lines; ``;`` comments and blank lines skipped."""
-    import re  # on use: the planner's start-up does without it
-
     step = re.compile(PLAN_STEP_PATTERN)
     steps: list[PlanStep] = []
     for number, line in enumerate(text.splitlines(), start=1):

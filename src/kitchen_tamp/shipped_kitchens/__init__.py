@@ -1,100 +1,73 @@
-"""The kitchens that ship with kitchen_tamp, as package data: one folder per kitchen with its
-scene file (``scene.toml``), and its PDDL problems (the ``default`` kitchen also holds the
-domain every kitchen shares).
+"""The kitchens that ship with kitchen_tamp, and the one rule that finds a problem's files.
 
-Only ``os.path`` is used here (and the file-name rule of ``planning.pddl_paths``), so the
-command lines find the shipped files without loading the simulator, and the activity
-planner's start-up (``find_problem_file``, ``domain_file_for``: plain strings) loads
-neither ``importlib.resources`` nor ``pathlib``.
+The kitchens are package data: one folder per kitchen with its scene file
+(``scene.toml``) and its PDDL problems; the ``default`` kitchen also holds the
+domain every kitchen shares. (The checkout's ``pddl/*.pddl`` are links to the
+default kitchen's files.)
+
+A command line names a problem, maybe a domain and a scene; ``find_problem``,
+``domain_for`` and ``scene_for`` turn those into files, so that every program
+finds them alike. A problem given with a folder, or one that exists where it
+is named, is taken as given; a bare name is looked up in the working
+directory, then beside the scene, then in the shipped kitchens (the default
+kitchen first). The planning package takes the resulting paths and knows
+nothing of this.
 """
 
 from __future__ import annotations
 
 import os
-
-from kitchen_tamp.planning.reading.paths import is_bare_name
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from pathlib import Path
-    from typing import Final
+from pathlib import Path
+from typing import Final
 
 DEFAULT_KITCHEN: Final = "default"
 SCENE_FILE: Final = "scene.toml"
 DOMAIN_FILE: Final = "domain.pddl"
 DEFAULT_PROBLEM: Final = "problem.pddl"
 
-
-def _package_folder() -> str:
-    folder = os.path.dirname(os.path.abspath(__file__))
-    if not os.path.isdir(folder):  # wheels install packages as plain files; a zip import would not
-        raise RuntimeError(f"the shipped kitchens are not on the file system ({folder})")
-    return folder
-
-
-def _as_path(path: str) -> Path:
-    from pathlib import Path  # on use: the planner's start-up works on plain strings
-
-    return Path(path)
-
-
-def _kitchen_folder(name: str = DEFAULT_KITCHEN) -> str:
-    return os.path.join(_package_folder(), name)
+PACKAGE_FOLDER: Final = Path(__file__).resolve().parent
+"""Where the shipped kitchens are (wheels install package data as plain files)."""
 
 
 def kitchen_folder(name: str = DEFAULT_KITCHEN) -> Path:
     """The folder of a shipped kitchen."""
-    return _as_path(_kitchen_folder(name))
+    return PACKAGE_FOLDER / name
 
 
 def shipped_kitchens() -> list[str]:
     """Names of the kitchens that ship with the package."""
-    folder = _package_folder()
-    return sorted(name for name in os.listdir(folder)
-                  if os.path.isfile(os.path.join(folder, name, SCENE_FILE)))
+    return sorted(folder.name for folder in PACKAGE_FOLDER.iterdir() if (folder / SCENE_FILE).is_file())
 
 
 def default_scene_path() -> Path:
     """The default kitchen's scene file."""
-    return _as_path(os.path.join(_kitchen_folder(), SCENE_FILE))
-
-
-def _default_domain_file() -> str:
-    return os.path.join(_kitchen_folder(), DOMAIN_FILE)
+    return kitchen_folder() / SCENE_FILE
 
 
 def default_domain_path() -> Path:
     """The kitchen domain, shared by every shipped kitchen."""
-    return _as_path(_default_domain_file())
-
-
-def _problem_folders() -> list[str]:
-    names = [DEFAULT_KITCHEN, *(n for n in shipped_kitchens() if n != DEFAULT_KITCHEN)]
-    return [_kitchen_folder(n) for n in names]
+    return kitchen_folder() / DOMAIN_FILE
 
 
 def problem_folders() -> list[Path]:
-    """Where bare problem names are looked up after the working directory: the default
-    kitchen first, then the others in name order."""
-    return [_as_path(folder) for folder in _problem_folders()]
-
-
-def find_problem_file(problem: str, scene: str | None = None) -> str:
-    """``find_problem`` as a plain string (the file as given if it exists or names a folder)."""
-    if os.path.exists(problem or ".") or not is_bare_name(problem):
-        return problem
-    folders = ([os.path.dirname(scene)] if scene is not None else []) + _problem_folders()
-    for folder in folders:
-        if os.path.isfile(os.path.join(folder, problem)):
-            return os.path.join(folder, problem)
-    return problem
+    """Where bare problem names are looked up after the working directory (and the scene's
+    folder): the default kitchen first, then the others in name order."""
+    names = [DEFAULT_KITCHEN, *(name for name in shipped_kitchens() if name != DEFAULT_KITCHEN)]
+    return [kitchen_folder(name) for name in names]
 
 
 def find_problem(problem: str | os.PathLike[str], scene: str | os.PathLike[str] | None = None) -> Path:
     """A problem file as given if it exists or names a folder; else a bare name looked up in
     the working directory, beside ``scene``, then in the shipped kitchens (the path as given
-    if none has it, so the caller reports it missing)."""
-    return _as_path(find_problem_file(os.fspath(problem), None if scene is None else os.fspath(scene)))
+    if none has it, so that loading reports it missing)."""
+    given = Path(problem)
+    if given.exists() or given.parent != Path("."):
+        return given
+    folders = ([Path(scene).parent] if scene is not None else []) + problem_folders()
+    for folder in folders:
+        if (folder / given).is_file():
+            return folder / given
+    return given
 
 
 def scene_for(problem: Path) -> Path:
@@ -103,12 +76,7 @@ def scene_for(problem: Path) -> Path:
     return beside if beside.is_file() else default_scene_path()
 
 
-def domain_file_for(problem: str) -> str:
-    """``domain_for`` as a plain string."""
-    beside = os.path.join(os.path.dirname(problem), DOMAIN_FILE)
-    return beside if os.path.isfile(beside) else _default_domain_file()
-
-
-def domain_for(problem: str | os.PathLike[str]) -> Path:
+def domain_for(problem: Path) -> Path:
     """The domain of a problem: ``domain.pddl`` beside it, else the shipped kitchen domain."""
-    return _as_path(domain_file_for(os.fspath(problem)))
+    beside = problem.parent / DOMAIN_FILE
+    return beside if beside.is_file() else default_domain_path()

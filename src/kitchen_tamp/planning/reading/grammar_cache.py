@@ -36,6 +36,7 @@ from lark.exceptions import VisitError
 from pddl.__version__ import __version__ as pddl_version
 from pddl.parser import GRAMMAR_FILE, PARSERS_DIRECTORY
 
+from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.user_cache import cache_directory
 
 T = TypeVar("T")
@@ -102,8 +103,6 @@ def _load(path: Path, key: str) -> Lark | None:
 
 
 def _store(parser: Lark, path: Path, key: str) -> None:
-    from kitchen_tamp.atomic_files import write_atomically  # only on a miss
-
     buffer = io.BytesIO()
     buffer.write(_header(key))
     parser.save(buffer)

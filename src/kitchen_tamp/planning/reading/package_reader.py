@@ -2,7 +2,7 @@
 
 The ``pddl`` package parses; it does not check that a problem only uses the
 domain's predicates and objects, nor that an action only uses its own
-parameters. ``schemas`` does that, on the ``pddl_syntax`` records that
+parameters. ``schemas`` does that, on the ``reading.syntax`` records that
 ``domain_syntax`` and ``problem_syntax`` here make of the package's objects,
 using ``PddlSource.locate`` to find the line of the offending name.
 
@@ -29,8 +29,7 @@ from pddl.parser.problem import ProblemTransformer
 
 from kitchen_tamp.planning.errors import PlanningInputError
 from kitchen_tamp.planning.reading.grammar_cache import StartSymbol, parse_with, pddl_parser
-from kitchen_tamp.planning.reading.paths import read_pddl
-from kitchen_tamp.planning.reading.source import PddlSource
+from kitchen_tamp.planning.reading.source import PddlSource, read_pddl
 from kitchen_tamp.planning.reading.syntax import (
     EQUALITY,
     ROOT_TYPE,

@@ -1,29 +1,36 @@
-"""A PDDL file's path and text, kept so that a checking error can name the line it is about."""
+"""A PDDL file's path and text: reading it, and placing an error on the line it is about."""
 
 from __future__ import annotations
 
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
 from kitchen_tamp.planning.errors import PlanningInputError
-from kitchen_tamp.planning.frozen_record import FrozenRecord
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from pathlib import Path
 
 
-class PddlSource(FrozenRecord):
+def read_pddl(path: str | Path, what: str) -> str:
+    """The text of a PDDL file; a missing or unreadable file is an input error naming ``what``."""
+    path = Path(path)
+    if not path.exists():
+        raise PlanningInputError(f"{what} file not found", path)
+    if path.is_dir():
+        raise PlanningInputError(f"{what} path is a directory, expected a PDDL file", path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise PlanningInputError(f"cannot read {what} file: {error}", path) from error
+
+
+@dataclass(frozen=True, slots=True)
+class PddlSource:
     """A read PDDL file with its text, kept for error messages."""
 
-    __slots__ = ("path", "text")
     path: str | Path
     text: str
 
-    def __init__(self, path: str | Path, text: str) -> None:
-        self._set_fields(path=path, text=text)
-
     def locate(self, name: str, after: str | None = None) -> tuple[int | None, int | None]:
         """Line and column of the first whole-word ``name`` (after ``after`` if given)."""
-        import re  # on use: only an error message needs it
-
         start = 0
         if after is not None:
             found = re.search(re.escape(after), self.text, re.IGNORECASE)

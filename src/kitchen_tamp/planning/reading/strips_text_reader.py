@@ -3,22 +3,21 @@
 Importing Lark and the ``pddl`` package and loading their parsers costs about
 75 ms, more than pyperplan's whole run on a small problem; the text of a
 STRIPS file is a handful of nested lists. This reader covers the fragment we
-plan on, written the way the ``pddl`` package's grammar asks: typing,
-constants, negative preconditions and equality, conjunctions of literals, the
-sections in the grammar's order, lowercase keywords. It answers ``None``
-whenever a file steps outside that fragment or the package might object to
-it: other requirements, ``either``, numbers, an empty precondition, a keyword
-used as a name, a name the package's name pattern refuses, a name declared
-twice, a type cycle, a type used without ``:typing``, ``=`` without
-``:equality``, unbalanced parentheses, any syntax error. Then the caller reads
-the file with the ``pddl`` package (``pddl_files``), which decides and words
-every error. So the package stays the judge of what a file means; this reader
-only makes the common case fast, and ``tests/planning/test_strips_text_reader.py``
-holds it to the package's reading on every file we ship and on thousands of
-mutated ones.
+plan on, written as the ``pddl`` grammar asks (typing, constants, negative
+preconditions, equality, conjunctions of literals, sections in the grammar's
+order, lowercase keywords), and answers ``None`` for anything else or anything
+the package might object to (other requirements, ``either``, numbers, an empty
+precondition, a grammar word or a refused pattern used as a name, a name
+declared twice, a type cycle, ``- type`` without ``:typing``, ``=`` without
+``:equality``, any syntax error). The caller then reads the file with the
+``pddl`` package (``package_reader``), which decides and words every error: the
+package stays the judge of what a file means, and
+``tests/planning/test_strips_text_reader.py`` holds this reader to its reading.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 from kitchen_tamp.planning.reading.syntax import (
     EQUALITY,
@@ -26,15 +25,12 @@ from kitchen_tamp.planning.reading.syntax import (
     ActionSyntax,
     DomainSyntax,
     ProblemSyntax,
+    SyntaxLiteral,
+    TypedName,
 )
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from collections.abc import Callable
-
-    from kitchen_tamp.planning.reading.syntax import SyntaxLiteral, TypedName
-
-    Expression = str | list["Expression"]
+Expression = str | list["Expression"]
+"""A token, or a parenthesised list of expressions."""
 
 SUPPORTED_REQUIREMENTS = frozenset({":strips", ":typing", ":negative-preconditions", ":equality"})
 """Requirements this reader takes; a file declaring any other is left to the ``pddl`` package."""

@@ -24,26 +24,21 @@ entries are kept (the least recently used go first), each at most
 
 from __future__ import annotations
 
+import contextlib
 import marshal
 import os
 import sys
+from collections.abc import Iterable
+from hashlib import sha256
+from importlib.util import find_spec
+from pathlib import Path
+from typing import Any
 
 import kitchen_tamp
-from kitchen_tamp.planning.reading.paths import resolve_problem_file
+from kitchen_tamp.atomic_files import write_atomically
+from kitchen_tamp.planning.loading import default_domain, load_task
 from kitchen_tamp.planning.task import GroundAction, Task, bits
-from kitchen_tamp.user_cache import cache_folder
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from collections.abc import Iterable
-    from hashlib import sha256
-    from pathlib import Path
-    from typing import Any
-else:
-    try:  # the built-in SHA-256: ``hashlib`` would load OpenSSL first, a few ms at every start
-        from _sha256 import sha256
-    except ImportError:  # other Python builds (3.12 renamed it)
-        from hashlib import sha256
+from kitchen_tamp.user_cache import cache_directory
 
 CACHE_FORMAT = 1
 """Bumped when the layout of an entry changes."""
@@ -54,8 +49,8 @@ MAX_ENTRIES = 32
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 """A task whose entry would be larger is not stored (it is loaded from its files every run)."""
 
-TASK_SOURCES = ("errors.py", "frozen_record.py", "grounding.py", "loading.py", "schemas.py", "task.py",
-                "reading/package_reader.py", "reading/paths.py", "reading/source.py", "reading/syntax.py",
+TASK_SOURCES = ("errors.py", "grounding.py", "loading.py", "schemas.py", "task.py",
+                "reading/package_reader.py", "reading/source.py", "reading/syntax.py",
                 "reading/strips_text_reader.py", "reading/task_cache.py")
 """Our modules whose code decides what a loaded task is; editing one makes every entry stale."""
 
@@ -66,36 +61,26 @@ ENTRY_FOLDER = "tasks"
 
 def task_cache_directory() -> Path:
     """Where the entries live (raises ``RuntimeError`` without a home directory, as ``cache_directory``)."""
-    from pathlib import Path  # the planner's start-up works on plain strings
-
-    return Path(cache_folder(), ENTRY_FOLDER)
+    return cache_directory() / ENTRY_FOLDER
 
 
 def load_task_cached(problem_path: str | Path, domain_path: str | Path | None = None) -> Task:
     """``load_task(problem_path, domain_path)``, served from the cache when the files are unchanged."""
-    problem_file = resolve_problem_file(problem_path)
-    domain_file = (os.fspath(domain_path) if domain_path is not None
-                   else os.path.join(os.path.dirname(problem_file), "domain.pddl"))
+    problem = Path(problem_path)
+    domain = Path(domain_path) if domain_path is not None else default_domain(problem)
     try:
-        key = task_key(_read_bytes(domain_file), _read_bytes(problem_file))
-        entry: str | None = os.path.join(cache_folder(), ENTRY_FOLDER, key + ENTRY_SUFFIX)
+        key = task_key(domain.read_bytes(), problem.read_bytes())
+        entry: Path | None = task_cache_directory() / (key + ENTRY_SUFFIX)
     except (OSError, RuntimeError):  # unreadable files (load_task says why) or no home: no cache
         entry = None
     if entry is not None:
         task = _read_entry(entry, key)
         if task is not None:
             return task
-    from kitchen_tamp.planning.loading import load_task  # imports Lark and pddl: only on a miss
-
-    task = load_task(problem_path, domain_path)
+    task = load_task(problem, domain)
     if entry is not None:
         _write_entry(entry, key, task)
     return task
-
-
-def _read_bytes(path: str) -> bytes:
-    with open(path, "rb") as stream:
-        return stream.read()
 
 
 def task_key(domain: bytes, problem: bytes) -> str:
@@ -111,20 +96,18 @@ def task_key(domain: bytes, problem: bytes) -> str:
 
 def _versions_digest() -> bytes:
     """SHA-256 of our task-building sources and of the files that carry the pddl and Lark versions."""
-    from importlib.machinery import PathFinder  # already loaded, unlike importlib.util
-
     digest = sha256()
-    planning = os.path.dirname(os.path.dirname(__file__))
-    files = [os.path.join(planning, *name.split("/")) for name in TASK_SOURCES]
+    planning = Path(__file__).parent.parent
+    files = [planning / name for name in TASK_SOURCES]
     for package, version_file in (("pddl", "__version__.py"), ("lark", "__init__.py")):
-        spec = PathFinder.find_spec(package)
+        spec = find_spec(package)
         locations = list(spec.submodule_search_locations or []) if spec is not None else []
-        files.extend(os.path.join(location, version_file) for location in locations[:1])
+        files.extend(Path(location, version_file) for location in locations[:1])
     for file in files:
         try:
-            digest.update(_read_bytes(file))
+            digest.update(file.read_bytes())
         except OSError:
-            digest.update(b"missing " + file.encode())
+            digest.update(b"missing " + os.fsencode(file))
     return digest.digest()
 
 
@@ -160,47 +143,35 @@ def decode_task(fields: tuple[Any, ...]) -> Task:
         unreachable_goal_atoms=unreachable)
 
 
-def _read_entry(entry: str, key: str) -> Task | None:
+def _read_entry(entry: Path, key: str) -> Task | None:
     try:
-        stored_key, fields = marshal.loads(_read_bytes(entry))
+        stored_key, fields = marshal.loads(entry.read_bytes())
         if stored_key != key:
             return None
         task = decode_task(fields)
     except Exception:  # missing, unreadable, truncated, corrupt or another layout: a miss
         return None
-    # Recently used; a read-only directory just keeps the old time. Not contextlib.suppress: one
-    # more import on every start.
-    try:  # noqa: SIM105
+    with contextlib.suppress(OSError):  # recently used; a read-only directory just keeps the old time
         os.utime(entry)
-    except OSError:
-        pass
     return task
 
 
-def _write_entry(entry: str, key: str, task: Task) -> None:
+def _write_entry(entry: Path, key: str, task: Task) -> None:
     data = marshal.dumps((key, encode_task(task)))
     if len(data) > MAX_ENTRY_BYTES:
         return
-    from kitchen_tamp.atomic_files import write_file_atomically  # only on a miss
-
-    try:  # an unwritable cache directory costs time next run, nothing else
-        write_file_atomically(entry, data)
-        _evict(os.path.dirname(entry))
-    except OSError:
-        pass
+    with contextlib.suppress(OSError):  # an unwritable cache directory costs time next run, nothing else
+        write_atomically(entry, data)
+        _evict(entry.parent)
 
 
-def _evict(directory: str) -> None:
+def _evict(directory: Path) -> None:
     """Remove the least recently used entries beyond ``MAX_ENTRIES``."""
-    import contextlib
-
     entries = []
-    with os.scandir(directory) as found:
-        for item in found:
-            if item.name.endswith(ENTRY_SUFFIX):
-                with contextlib.suppress(OSError):  # another process may have removed it meanwhile
-                    entries.append((item.stat().st_mtime_ns, item.name, item.path))
+    for path in directory.glob("*" + ENTRY_SUFFIX):
+        with contextlib.suppress(OSError):  # another process may have removed it meanwhile
+            entries.append((path.stat().st_mtime_ns, path.name, path))
     entries.sort()
     for _, _, path in entries[:max(0, len(entries) - MAX_ENTRIES)]:
         with contextlib.suppress(OSError):
-            os.remove(path)
+            path.unlink()

@@ -35,8 +35,9 @@ from __future__ import annotations
 
 import heapq
 import itertools
+from typing import Generic, TypeVar
 
-from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
+from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration, RelaxedPlanSupporters
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
@@ -46,21 +47,6 @@ DEFAULT_BOOST = 1000
 
 ALL, PREFERRED, NOVEL = 0, 1, 2
 """The queues, in the order that wins ties between turns."""
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from typing import Generic, TypeVar
-
-    from kitchen_tamp.planning.heuristics import RelaxedPlanSupporters
-else:  # what the generic class needs at run time, where its type parameter is never looked at
-
-    class Generic:
-        def __class_getitem__(cls, _parameter: object) -> type:
-            return cls
-
-    def TypeVar(name: str) -> str:
-        return name
-
 
 Item = TypeVar("Item")
 

@@ -17,15 +17,11 @@ from __future__ import annotations
 import heapq
 import itertools
 
-from kitchen_tamp.planning.heuristics import INFINITY, Heuristic, make_heuristic
+from kitchen_tamp.planning.heuristics import INFINITY, Heuristic, HeuristicName, make_heuristic
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from kitchen_tamp.planning.heuristics import HeuristicName
 
 Entry = tuple[float, float, int, int, State]
 """A queue entry: (priority, h, insertion order, g, state); the order makes ties first-in first-out."""

@@ -23,7 +23,7 @@ def breadth_first_search(
         return SearchResult("bfs", "solved", (), 0, 1, 0, budget.elapsed())
     if task.trivially_unsolvable:
         return _unsolvable(task, 0, 1, budget)
-    key_mask, by_key, unconditional = task.successor_table()
+    key_mask, by_key, unconditional = task.successor_table
     goal, goal_neg = task.goal, task.goal_neg
     layer = [root]
     expanded = 0

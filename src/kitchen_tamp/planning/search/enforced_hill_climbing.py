@@ -25,16 +25,13 @@ from collections import deque
 from kitchen_tamp.planning.heuristics import (
     INFINITY,
     HelpfulHeuristic,
+    HeuristicName,
     RelaxedExploration,
     make_heuristic,
 )
 from kitchen_tamp.planning.search.breadth_first import dead_root_result
-from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, SearchStatus, plan_to
 from kitchen_tamp.planning.task import GroundAction, State, Task
-
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from kitchen_tamp.planning.heuristics import HeuristicName
 
 ALL_ACTIONS = -1
 """The helpful-action bitset that allows every action (all bits set)."""
@@ -55,14 +52,7 @@ def enforced_hill_climbing(
         def evaluate(state: State) -> tuple[float, int]:
             return h(state), ALL_ACTIONS
 
-    return _climb(task, evaluate, budget, prune=heuristic == "hff" and helpful_actions)
-
-
-class _Counts:
-    """Expansions, generated and evaluated states over the whole climb."""
-
-    def __init__(self) -> None:
-        self.expanded, self.generated, self.evaluated = 0, 1, 1
+    return _Climb(task, evaluate, budget).run(prune=heuristic == "hff" and helpful_actions)
 
 
 class _OutOfBudget(Exception):
@@ -73,79 +63,89 @@ Improvement = tuple[State, float, int, dict[State, State | None]]
 """A better state, its h and helpful actions, and the parent pointers leading to it."""
 
 
-def _climb(task: Task, evaluate: HelpfulHeuristic, budget: SearchBudget, prune: bool) -> SearchResult:
-    counts = _Counts()
-    state = task.initial_state
-    h_state, helpful = evaluate(state)
-    plan: list[GroundAction] = []
-    if h_state == INFINITY:
-        return dead_root_result(task, "ehc", budget)
-    goal, goal_neg = task.goal, task.goal_neg
-    # Every evaluation of the climb, so that states met again on a later plateau are not re-evaluated.
-    known: dict[State, tuple[float, int]] = {state: (h_state, helpful)}
-    while not (state & goal == goal and not state & goal_neg):
-        found: Improvement | None = None
-        try:
-            for helpful_only in ((True, False) if prune else (False,)):
-                found = _improve(task, evaluate, state, h_state, known, helpful_only, budget, counts)
-                if found is not None:
-                    break
-        except _OutOfBudget:
-            return SearchResult("ehc", "budget", None, counts.expanded, counts.generated,
-                                counts.evaluated, budget.elapsed(), budget.describe())
-        if found is None:
-            return SearchResult(
-                "ehc", "failed", None, counts.expanded, counts.generated, counts.evaluated,
-                budget.elapsed(),
-                f"enforced hill climbing hit a dead end after {len(plan)} action(s): no state "
-                f"reachable from there improves on h_FF = {h_state:g} (try bfs, gbfs or astar)")
-        state, h_state, helpful, parents = found
-        plan.extend(plan_to(task, parents, state))
-    return SearchResult("ehc", "solved", tuple(plan), counts.expanded, counts.generated,
-                        counts.evaluated, budget.elapsed())
+class _Climb:
+    """One climb: the task, its heuristic and budget, the counts, and every evaluation made so far.
 
-
-def _improve(
-    task: Task, evaluate: HelpfulHeuristic, start: State, h_start: float,
-    known: dict[State, tuple[float, int]], helpful_only: bool, budget: SearchBudget, counts: _Counts,
-) -> Improvement | None:
-    """Breadth-first search from ``start`` for a state with h below ``h_start``, None if there is none.
-
-    ``known`` caches evaluations, so the repeat over every action (and later
-    plateaus) do not pay for them twice. Raises ``_OutOfBudget``.
+    ``known`` keeps each evaluated state's (h, helpful actions), so that the
+    repeat of a plateau search over every action, and later plateaus, do not
+    pay for an evaluation twice.
     """
-    goal, goal_neg = task.goal, task.goal_neg
-    parents: dict[State, State | None] = {start: None}
-    frontier = deque([start])
-    check_at = 0.0
-    while frontier:
-        if counts.expanded >= check_at:
-            if budget.exhausted(counts.expanded):
-                raise _OutOfBudget
-            check_at = budget.next_check(counts.expanded)
-        node = frontier.popleft()
-        counts.expanded += 1
-        allowed = known[node][1] if helpful_only else ALL_ACTIONS
-        best: tuple[float, State, int] | None = None
-        for child, index in task.successor_indices(node):
-            if child in parents or not (allowed >> index) & 1:
-                continue
-            parents[child] = node
-            counts.generated += 1
-            if child & goal == goal and not child & goal_neg:
-                best = (-1.0, child, 0)
-                break
-            evaluation = known.get(child)
-            if evaluation is None:
-                evaluation = evaluate(child)
-                counts.evaluated += 1
-                known[child] = evaluation
-            h_child = evaluation[0]
-            if h_child == INFINITY:
-                continue
-            if h_child < h_start and (best is None or h_child < best[0]):
-                best = (h_child, child, evaluation[1])  # strict '<': the first generated wins ties
-            frontier.append(child)
-        if best is not None:
-            return best[1], max(best[0], 0.0), best[2], parents
-    return None
+
+    def __init__(self, task: Task, evaluate: HelpfulHeuristic, budget: SearchBudget) -> None:
+        self.task, self.evaluate, self.budget = task, evaluate, budget
+        self.expanded, self.generated, self.evaluated = 0, 1, 1
+        self.known: dict[State, tuple[float, int]] = {}
+
+    def result(self, status: SearchStatus, plan: tuple[GroundAction, ...] | None,
+               message: str = "") -> SearchResult:
+        return SearchResult("ehc", status, plan, self.expanded, self.generated, self.evaluated,
+                            self.budget.elapsed(), message)
+
+    def run(self, prune: bool) -> SearchResult:
+        """Climb from the initial state; ``prune``: each plateau over helpful actions first."""
+        task = self.task
+        state = task.initial_state
+        h_state, helpful = self.evaluate(state)
+        if h_state == INFINITY:
+            return dead_root_result(task, "ehc", self.budget)
+        self.known[state] = (h_state, helpful)
+        plan: list[GroundAction] = []
+        while not (state & task.goal == task.goal and not state & task.goal_neg):
+            found: Improvement | None = None
+            try:
+                for helpful_only in ((True, False) if prune else (False,)):
+                    found = self.improve(state, h_state, helpful_only)
+                    if found is not None:
+                        break
+            except _OutOfBudget:
+                return self.result("budget", None, self.budget.describe())
+            if found is None:
+                return self.result(
+                    "failed", None,
+                    f"enforced hill climbing hit a dead end after {len(plan)} action(s): no state "
+                    f"reachable from there improves on h_FF = {h_state:g} (try bfs, gbfs or astar)")
+            state, h_state, helpful, parents = found
+            plan.extend(plan_to(task, parents, state))
+        return self.result("solved", tuple(plan))
+
+    def improve(self, start: State, h_start: float, helpful_only: bool) -> Improvement | None:
+        """Breadth-first search from ``start`` for a state with h below ``h_start``, None if there is none.
+
+        ``helpful_only``: follow only each state's helpful actions. Raises ``_OutOfBudget``.
+        """
+        task, known, budget = self.task, self.known, self.budget
+        goal, goal_neg = task.goal, task.goal_neg
+        parents: dict[State, State | None] = {start: None}
+        frontier = deque([start])
+        check_at = 0.0
+        while frontier:
+            if self.expanded >= check_at:
+                if budget.exhausted(self.expanded):
+                    raise _OutOfBudget
+                check_at = budget.next_check(self.expanded)
+            node = frontier.popleft()
+            self.expanded += 1
+            allowed = known[node][1] if helpful_only else ALL_ACTIONS
+            best: tuple[float, State, int] | None = None
+            for child, index in task.successor_indices(node):
+                if child in parents or not (allowed >> index) & 1:
+                    continue
+                parents[child] = node
+                self.generated += 1
+                if child & goal == goal and not child & goal_neg:
+                    best = (-1.0, child, 0)
+                    break
+                evaluation = known.get(child)
+                if evaluation is None:
+                    evaluation = self.evaluate(child)
+                    self.evaluated += 1
+                    known[child] = evaluation
+                h_child = evaluation[0]
+                if h_child == INFINITY:
+                    continue
+                if h_child < h_start and (best is None or h_child < best[0]):
+                    best = (h_child, child, evaluation[1])  # strict '<': the first generated wins ties
+                frontier.append(child)
+            if best is not None:
+                return best[1], max(best[0], 0.0), best[2], parents
+        return None

@@ -1,45 +1,33 @@
-"""Searches by name: the one place the CLI and the benchmarks look them up."""
+"""Searches by name: the one place the command line, the benchmarks and the tests look them up.
+
+A new search is a function with the ``Search`` signature (a task, a time
+budget, an expansion limit; a ``SearchResult`` back) and one line in
+``SEARCHES`` with its description in ``SEARCH_DESCRIPTIONS``; the command
+line's ``--planner`` choices follow from them.
+"""
 
 from __future__ import annotations
 
-import importlib
+from typing import Protocol
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from typing import Protocol
-
-    from kitchen_tamp.planning.search.result import SearchResult
-    from kitchen_tamp.planning.task import Task
-
-    class Search(Protocol):
-        def __call__(
-            self, task: Task, *, time_budget: float | None = None, max_expansions: int | None = None
-        ) -> SearchResult: ...
+from kitchen_tamp.planning.search.best_first import astar_search, greedy_best_first_search
+from kitchen_tamp.planning.search.breadth_first import breadth_first_search
+from kitchen_tamp.planning.search.enforced_hill_climbing import enforced_hill_climbing
+from kitchen_tamp.planning.search.result import SearchResult
+from kitchen_tamp.planning.task import Task
 
 
-SEARCH_PACKAGE = "kitchen_tamp.planning.search"
-
-
-def _imported_when_run(module: str, name: str) -> Search:
-    """The search ``name`` of ``kitchen_tamp.planning.search.module``, its module imported at its first run.
-
-    A planner process then pays only for the searches it uses (``bfs`` never
-    loads the heuristics).
-    """
-    def search(task: Task, *, time_budget: float | None = None,
-               max_expansions: int | None = None) -> SearchResult:
-        function: Search = getattr(importlib.import_module(f"{SEARCH_PACKAGE}.{module}"), name)
-        return function(task, time_budget=time_budget, max_expansions=max_expansions)
-
-    search.__name__ = search.__qualname__ = name
-    return search
+class Search(Protocol):
+    def __call__(
+        self, task: Task, *, time_budget: float | None = None, max_expansions: int | None = None
+    ) -> SearchResult: ...
 
 
 SEARCHES: dict[str, Search] = {
-    "bfs": _imported_when_run("breadth_first", "breadth_first_search"),
-    "ehc": _imported_when_run("enforced_hill_climbing", "enforced_hill_climbing"),
-    "gbfs": _imported_when_run("best_first", "greedy_best_first_search"),
-    "astar": _imported_when_run("best_first", "astar_search"),
+    "bfs": breadth_first_search,
+    "ehc": enforced_hill_climbing,
+    "gbfs": greedy_best_first_search,
+    "astar": astar_search,
 }
 """Name -> search with its default settings. ``bfs`` and ``astar`` (with h_max) return shortest plans."""
 

@@ -3,27 +3,23 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Mapping
+from dataclasses import dataclass
 from itertools import pairwise
+from typing import Literal
 
-from kitchen_tamp.planning.frozen_record import FrozenRecord
 from kitchen_tamp.planning.task import GroundAction, State, Task
 
-TYPE_CHECKING = False  # not typing.TYPE_CHECKING: importing typing costs every planner start
-if TYPE_CHECKING:
-    from collections.abc import Mapping
-    from typing import Literal, TypeAlias
-
-    SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
+SearchStatus = Literal["solved", "unsolvable", "failed", "budget"]
 """``unsolvable``: the reachable states were exhausted without a goal (a proof);
 ``failed``: an incomplete search (enforced hill climbing) gave up, which proves
 nothing; ``budget``: time or expansions ran out."""
 
 
-class SearchResult(FrozenRecord):
+@dataclass(frozen=True, slots=True)
+class SearchResult:
     """What a search found (``plan``, None without one), why it stopped, and what it cost."""
 
-    __slots__ = (  # noqa: RUF023 (the order of __init__)
-        "planner", "status", "plan", "expanded", "generated", "evaluated", "seconds", "message")
     planner: str
     status: SearchStatus
     plan: tuple[GroundAction, ...] | None
@@ -31,19 +27,14 @@ class SearchResult(FrozenRecord):
     generated: int
     evaluated: int
     seconds: float
-    message: str
-
-    def __init__(self, planner: str, status: SearchStatus, plan: tuple[GroundAction, ...] | None,
-                 expanded: int, generated: int, evaluated: int, seconds: float, message: str = "") -> None:
-        self._set_fields(planner=planner, status=status, plan=plan, expanded=expanded, generated=generated,
-                         evaluated=evaluated, seconds=seconds, message=message)
+    message: str = ""
 
     @property
     def solved(self) -> bool:
         return self.status == "solved"
 
 
-StateParents: TypeAlias = "Mapping[State, State | None]"  # a string: collections.abc is not loaded here
+StateParents = Mapping[State, State | None]
 """Each reached state's parent (None at the root); the actions are recovered afterwards."""
 
 
