@@ -22,6 +22,7 @@ import numpy as np
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.kitchen import KitchenError, KitchenMap, build_kitchen, default_kitchen_map
+from kitchen_tamp.kitchen.binding_reader import binding_path_for
 from kitchen_tamp.planning import Atom, atom_text, load_task, plan
 from kitchen_tamp.planning.loading import domain_model
 
@@ -154,13 +155,17 @@ def problem_text(
 def generate_problems(
     count: int, problem_seed: int, folder: Path, domain: Path, kitchen_map: KitchenMap | None = None
 ) -> list[RandomProblem]:
-    """Write ``count`` problems (and the domain beside them) into ``folder``; what each turned out to be."""
+    """Write ``count`` problems (and the domain with its binding beside them) into ``folder``; what
+    each turned out to be."""
     objects = kitchen_objects(domain, kitchen_map)
     domain_name = domain_model(domain).name
     folder.mkdir(parents=True, exist_ok=True)
     local_domain = folder / "domain.pddl"
     if local_domain.resolve() != domain.resolve():
         shutil.copyfile(domain, local_domain)
+        binding = binding_path_for(domain)
+        if binding.is_file():  # the kitchen reads the domain's binding beside it
+            shutil.copyfile(binding, binding_path_for(local_domain))
     problems = []
     for index in range(count):
         rng = np.random.default_rng([problem_seed, index])

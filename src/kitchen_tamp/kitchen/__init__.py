@@ -1,16 +1,24 @@
-"""What the kitchen domain's symbols mean in the simulated kitchen.
+"""What a domain's symbols mean in the simulated kitchen.
 
-A kitchen is one scene file (``scene_file``); its models and its map of symbols
-to geometry are derived from it (``load_kitchen_map``; the shipped default kitchen
-is ``default_kitchen_map``). Build the scene for a problem (``build_kitchen_for_task``), read its symbolic
-state back (``abstract_state``, Ψ), and turn each grounded action into motion
-targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``).
+A kitchen is one scene file; its models and its map of symbols to geometry are
+derived from it, and the domain's binding (``binding``: types, predicates as
+geometric relations, actions as skills with roles) is read beside the domain
+(``load_kitchen_map``; the shipped default kitchen with the kitchen domain is
+``default_kitchen_map``). Build the scene for a problem (``build_kitchen_for_task``),
+read its symbolic state back (``abstract_state``, Ψ), and turn each grounded action
+into motion targets (``sample_targets`` / ``sample_action_targets`` -> ``SkillTargets``,
+or a ``SkillFailure`` saying why and which objects obstruct).
 """
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
 from kitchen_tamp.kitchen.action_replay import ActionReplay, first_problem, replay_action
+from kitchen_tamp.kitchen.binding import ActionBinding, DomainBinding
+from kitchen_tamp.kitchen.binding_reader import read_binding
+from kitchen_tamp.kitchen.conditions import apply_condition_effects
 from kitchen_tamp.kitchen.contact_policy import CONTACT_PENETRATION_BOUND, check_initial_overlaps
 from kitchen_tamp.kitchen.errors import (
+    BindingFileError,
+    FailureKind,
     InitialStateMismatchError,
     KitchenError,
     SkillFailure,
@@ -36,8 +44,12 @@ __all__ = [
     "DEFAULT_PARAMETERS",
     "RESTING_GAP",
     "SKILLS",
+    "ActionBinding",
     "ActionReplay",
+    "BindingFileError",
     "Carried",
+    "DomainBinding",
+    "FailureKind",
     "Grasp",
     "InitialStateMismatchError",
     "KitchenError",
@@ -55,6 +67,7 @@ __all__ = [
     "UnknownObjectError",
     "UnsupportedInitialStateError",
     "abstract_state",
+    "apply_condition_effects",
     "build_kitchen",
     "build_kitchen_for_task",
     "check_initial_overlaps",
@@ -63,6 +76,7 @@ __all__ = [
     "first_problem",
     "load_kitchen_map",
     "load_kitchen_problem",
+    "read_binding",
     "replay_action",
     "sample_action_targets",
     "sample_targets",

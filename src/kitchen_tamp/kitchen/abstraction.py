@@ -1,14 +1,19 @@
 """Ψ: the symbolic state of the kitchen computed from geometry.
 
-A box is on a surface (in a drawer) when it is not held, its centre lies over
-the region and its lowest corner rests on the region's face; a drawer is
-``opened`` past a fraction of its travel; ``surfClear``/``cabClear`` hold when
-no box rests there; ``armClear`` when nothing is attached to the hand.
+Geometry gives relations (``kitchen_tamp.kitchen.binding.RELATIONS``); the domain's binding
+says which predicate each relation is. A loose box rests on a support (a surface, a region, a
+drawer's floor, another box's top face) when its centre lies over the support's face and its
+lowest corner on it: its centre of mass is then over what holds it up, so it stands. A box on a
+region rests on the region, not on the region's surface. A drawer is ``opened`` past a fraction
+of its travel; a place is clear when no box rests there; a box is clear when it is not held and
+no box rests on it; the hand is empty when nothing is attached to it; conditions (``clean``,
+``cooked``) are the scene's record of what actions did (``kitchen.conditions``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 from typing import Final
 
 import numpy as np
@@ -22,6 +27,10 @@ RESTING_GAP: Final = 0.001
 """Boxes are put down this far above a face, so resting is not a collision."""
 RESTING_TOLERANCE: Final = 0.005
 """A box rests on a face when its lowest corner is within this height of it."""
+RESTING_RELATIONS: Final = {
+    "surface": "on_surface", "region": "on_region", "openable": "in_drawer", "box": "on_box"
+}
+"""The kind of support a box rests on -> the relation."""
 
 
 def rests_on(kitchen: KitchenScene, box: str, region: SupportRegion) -> bool:
@@ -31,38 +40,94 @@ def rests_on(kitchen: KitchenScene, box: str, region: SupportRegion) -> bool:
     return region.contains_xy(world_from_box.translation) and abs(bottom - region.top_z) <= RESTING_TOLERANCE
 
 
-def abstract_state(kitchen: KitchenScene, objects: Iterable[str] | None = None) -> frozenset[Atom]:
-    """Ψ(scene): every true atom about ``objects`` (all loaded kitchen objects by default)."""
-    names = set(objects) if objects is not None else None
+@dataclass
+class Relations:
+    """The relations that hold in the scene now: relation -> argument tuples."""
 
-    def known(name: str) -> bool:
-        return names is None or name in names
+    facts: dict[str, set[tuple[str, ...]]] = field(default_factory=dict)
 
-    surfaces = [s for s in kitchen.map.surfaces if known(s)]
-    openables = [o for o in kitchen.map.openables if known(o)]
-    boxes = [b for b in kitchen.boxes if known(b)]
+    def add(self, relation: str, *args: str) -> None:
+        self.facts.setdefault(relation, set()).add(args)
+
+    def of(self, relation: str) -> set[tuple[str, ...]]:
+        return self.facts.get(relation, set())
+
+
+def supports_of(kitchen: KitchenScene, box: str) -> list[tuple[str, str]]:
+    """(kind, name) of everything ``box`` rests on now (at most one, unless the scene is odd)."""
+    found = []
+    kitchen_map = kitchen.map
     held = kitchen.held_box()
-    atoms: set[Atom] = set()
-    if held is not None and known(held):
-        atoms.add(("holding", held))
+    for surface in kitchen_map.surfaces:
+        if rests_on(kitchen, box, kitchen.surface_region(surface)):
+            found.append(("surface", surface))
+    for region in kitchen_map.regions:
+        if rests_on(kitchen, box, kitchen.region_region(region)):
+            found.append(("region", region))
+    for openable in kitchen_map.openables:
+        if rests_on(kitchen, box, kitchen.openable_region(openable)):
+            found.append(("openable", openable))
+    for other in kitchen.boxes:
+        if other not in (box, held) and rests_on(kitchen, box, kitchen.box_top(other)):
+            found.append(("box", other))
+    return found
+
+
+def scene_relations(kitchen: KitchenScene) -> Relations:
+    """Every relation of the scene (see the module's description)."""
+    relations = Relations()
+    kitchen_map = kitchen.map
+    held = kitchen.held_box()
     if held is None:
-        atoms.add(("armClear",))
-    loose = [b for b in boxes if b != held]
-    for surface in surfaces:
-        region = kitchen.surface_region(surface)
-        on = [b for b in loose if rests_on(kitchen, b, region)]
-        atoms.update(("boxOn", b, surface) for b in on)
-        if not on:
-            atoms.add(("surfClear", surface))
-    for openable in openables:
-        region = kitchen.openable_region(openable)
-        inside = [b for b in loose if rests_on(kitchen, b, region)]
-        atoms.update(("boxIn", b, openable) for b in inside)
-        if not inside:
-            atoms.add(("cabClear", openable))
+        relations.add("hand_empty")
+    else:
+        relations.add("holding", held)
+    occupied: set[str] = set()
+    for box in kitchen.boxes:
+        if box == held:
+            continue
+        supports = supports_of(kitchen, box)
+        on_region = {name for kind, name in supports if kind == "region"}
+        region_surfaces = {kitchen_map.regions[name].surface for name in on_region}
+        for kind, name in supports:
+            if kind == "surface" and name in region_surfaces:
+                continue  # a box on a plate is on the plate, not on the table under it
+            relation = RESTING_RELATIONS[kind]
+            relations.add(relation, box, name)
+            occupied.add(name)
+        occupied |= region_surfaces
+    for surface in kitchen_map.surfaces:
+        if surface not in occupied:
+            relations.add("surface_clear", surface)
+    for region in kitchen_map.regions:
+        if region not in occupied:
+            relations.add("region_clear", region)
+    for openable in kitchen_map.openables:
+        if openable not in occupied:
+            relations.add("drawer_clear", openable)
         if kitchen.is_opened(openable):
-            atoms.add(("opened", openable))
-    return frozenset(atoms)
+            relations.add("opened", openable)
+    for box in kitchen.boxes:
+        if box != held and box not in occupied:
+            relations.add("box_clear", box)
+    return relations
+
+
+def abstract_state(kitchen: KitchenScene, objects: Iterable[str] | None = None) -> frozenset[Atom]:
+    """Ψ(scene): every true atom about ``objects`` (all loaded kitchen objects by default), in the
+    predicates of the kitchen's binding."""
+    names = set(objects) if objects is not None else None
+    relations = scene_relations(kitchen)
+    atoms: set[Atom] = set()
+    for predicate, meanings in kitchen.map.binding.predicates.items():
+        for relation in meanings:
+            if relation == "condition":
+                atoms.update(a for a in kitchen.conditions if a[0] == predicate)
+                continue
+            atoms.update((predicate, *args) for args in relations.of(relation))
+    if names is None:
+        return frozenset(atoms)
+    return frozenset(a for a in atoms if all(arg in names for arg in a[1:]))
 
 
 def check_initial_state(

@@ -11,9 +11,9 @@ The fingers hold an object when both touch it (within ``TOUCH_DISTANCE``) from
 opposite sides: what each finger touches lies between the two fingers, the
 left finger's point left of the right finger's.
 
-A loose box is supported when it rests on a region of the kitchen (a surface, a
-drawer's floor) as Ψ means it -- centre over the region, lowest corner on its
-face -- and stands upright on it (tilted at most ``SUPPORT_TILT_DEG``); a box
+A loose box is supported when it rests on something as Ψ means it (a surface, a
+region, a drawer's floor, another box's top face: centre over its face, lowest
+corner on it) and stands upright (tilted at most ``SUPPORT_TILT_DEG``); a box
 that is not supported falls.
 """
 
@@ -25,7 +25,7 @@ from typing import Final
 
 import numpy as np
 
-from kitchen_tamp.kitchen.abstraction import rests_on
+from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.errors import UnsupportedInitialStateError
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.world import BASE_LINK, AllowedContact, Body
@@ -132,15 +132,14 @@ def finger_distance(kitchen: KitchenScene, box: str) -> float:
 
 
 def support_of(kitchen: KitchenScene, box: str) -> str | None:
-    """The surface or drawer whose region ``box`` stands on now (see the module), or None."""
+    """What ``box`` stands on now -- a surface, a region, a drawer's floor or another box, as Ψ
+    finds it (``abstraction.supports_of``) -- provided it stands upright; else None."""
     rotation = kitchen.box(box).base_pose().rotation
     upright = float(np.max(np.abs(rotation[2, :])))
     if upright < np.cos(np.radians(SUPPORT_TILT_DEG)):
         return None
-    for name in (*kitchen.map.surfaces, *kitchen.map.openables):
-        if rests_on(kitchen, box, kitchen.region(name)):
-            return name
-    return None
+    supports = supports_of(kitchen, box)
+    return supports[0][1] if supports else None
 
 
 def check_initial_overlaps(kitchen: KitchenScene) -> None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from enum import StrEnum
+
 
 class KitchenError(Exception):
     """Base class of the kitchen's errors."""
@@ -33,13 +35,50 @@ class InitialStateMismatchError(KitchenError):
         self.unexpected = unexpected
 
 
-class SkillFailure(KitchenError):
-    """No sampled target of a skill was reachable and collision-free."""
+class FailureKind(StrEnum):
+    """Why a skill found no targets."""
 
-    def __init__(self, action: str, detail: str) -> None:
+    PRECONDITION = "precondition"
+    """The scene contradicts the action (the hand is full, the drawer closed, the box elsewhere)."""
+    NO_GRASP = "no_grasp"
+    """The object fits no grasp of the hand."""
+    FULL = "full"
+    """No sampled placement was free of the objects already there."""
+    OBSTRUCTED = "obstructed"
+    """Samples collided with other objects: removing them may make the action feasible."""
+    UNREACHABLE = "unreachable"
+    """No sample was reachable without collision, and no object is to blame."""
+
+
+class SkillFailure(KitchenError):
+    """No sampled target of a skill was reachable and collision-free; ``kind`` says why,
+    ``objects`` which objects obstructed the samples (or fill the region, for ``full``), most
+    often first, and ``region`` where the skill was to act."""
+
+    def __init__(
+        self,
+        action: str,
+        detail: str,
+        kind: FailureKind = FailureKind.UNREACHABLE,
+        objects: tuple[str, ...] = (),
+        region: str | None = None,
+    ) -> None:
         super().__init__(f"skill for {action} failed: {detail}")
         self.action = action
+        self.detail = detail
+        self.kind = kind
+        self.objects = objects
+        self.region = region
 
 
 class UnknownActionError(KitchenError):
     """An action name (or arity) that no kitchen skill implements."""
+
+
+class BindingFileError(KitchenError):
+    """A domain's binding file that cannot bind it: one line with the file, the key and why."""
+
+    def __init__(self, path: object, key: str, detail: str) -> None:
+        super().__init__(f"{path}: {key}: {detail}" if key else f"{path}: {detail}")
+        self.path = path
+        self.key = key

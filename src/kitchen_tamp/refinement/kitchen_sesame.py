@@ -2,10 +2,13 @@
 action refined by its skill followed by the mode's motion back end, with backtracking.
 
 A low-level state is a ``KitchenState``: a snapshot of the simulated scene (poses,
-joints including the gripper and the drawer, attachments). The sampler of an
-action restores the snapshot, draws one target sample and solves the move
-(``refine_action`` with one sample), and returns the snapshot after the action;
-Ψ is ``abstract_state`` of the restored scene.
+joints including the gripper and the drawer, attachments) and of the conditions
+geometry does not show (``clean``, ``cooked``). The sampler of an action restores
+the snapshot, draws one target sample and solves the move (``refine_action`` with
+one sample), records the conditions the action's effects set, and returns the
+snapshot after the action; Ψ is ``abstract_state`` of the restored scene. A skill
+that failed raises ``SkillSamplingFailure``, which carries the ``SkillFailure`` (its
+kind, the objects that obstructed it, the region) for the abstract level.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from kitchen_tamp.bilevel import (
     relational_problem,
     sesame,
 )
-from kitchen_tamp.kitchen import KitchenScene, abstract_state
+from kitchen_tamp.kitchen import KitchenScene, SkillFailure, abstract_state, apply_condition_effects
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, State, Task
 from kitchen_tamp.refinement.motion_backend import MotionBackend
@@ -37,9 +40,30 @@ from kitchen_tamp.world import SceneState
 
 @dataclass(frozen=True, eq=False)
 class KitchenState:
-    """A snapshot of the kitchen scene: the low-level state x of the bilevel problem."""
+    """A snapshot of the kitchen scene and its conditions: the low-level state x of the bilevel
+    problem."""
 
     scene: SceneState
+    conditions: frozenset[Atom] = frozenset()
+
+    @staticmethod
+    def of(kitchen: KitchenScene) -> KitchenState:
+        """The kitchen as it is now."""
+        return KitchenState(kitchen.scene.save_state(), frozenset(kitchen.conditions))
+
+    def restore(self, kitchen: KitchenScene) -> None:
+        """Put the kitchen back into this state."""
+        kitchen.scene.restore_state(self.scene)
+        kitchen.conditions = set(self.conditions)
+
+
+class SkillSamplingFailure(SamplingFailure):
+    """A sample failed; ``skill_failure`` is the skill's own failure (kind, obstructing objects,
+    region) when the skill found no targets, None when the motion or the judge's replay failed."""
+
+    def __init__(self, message: str, skill_failure: SkillFailure | None) -> None:
+        super().__init__(message)
+        self.skill_failure = skill_failure
 
 
 KITCHEN_BUDGETS: Final = SesameBudgets(max_plans=5, samples_per_step=4, max_samples=120, time_budget_s=900.0)
@@ -62,7 +86,7 @@ class KitchenSampler:
 
     def atoms_of(self, state: KitchenState) -> frozenset[Atom]:
         """Ψ(x): the atoms true in the snapshot."""
-        self.kitchen.scene.restore_state(state.scene)
+        state.restore(self.kitchen)
         return abstract_state(self.kitchen, self.task.objects)
 
     def __call__(
@@ -71,16 +95,23 @@ class KitchenSampler:
         transition: AbstractTransition[State, GroundAction],
         rng: np.random.Generator,
     ) -> Trajectory[KitchenState, ActionTrajectory]:
-        self.kitchen.scene.restore_state(state.scene)
+        state.restore(self.kitchen)
         action = transition.action
         trajectory, record = refine_action(
             self.kitchen, 0, action, self.backend, rng, collision_model=self.collision_model
         )
         self.last_record = record
         if trajectory is None:
-            raise SamplingFailure(record.rejections[-1] if record.rejections else f"{action.text} failed")
+            message = record.rejections[-1] if record.rejections else f"{action.text} failed"
+            raise SkillSamplingFailure(message, record.skill_failure)
+        atoms = self.task.atoms
+        apply_condition_effects(
+            self.kitchen,
+            (atoms[i] for i in action.add_ids),
+            (atoms[i] for i in range(len(atoms)) if action.delete >> i & 1),
+        )
         self.records[id(trajectory)] = record
-        return Trajectory((state, KitchenState(self.kitchen.scene.save_state())), (trajectory,))
+        return Trajectory((state, KitchenState.of(self.kitchen)), (trajectory,))
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,7 +163,7 @@ def refine_with_sesame(
 ) -> SesameRefinement:
     """Run SeSamE from the scene as it is; on success the scene is left in the final state."""
     sampler = KitchenSampler(kitchen, task, backend, collision_model)
-    initial = KitchenState(kitchen.scene.save_state())
+    initial = KitchenState.of(kitchen)
     problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
 
     def report(event: SampleEvent[State, GroundAction]) -> None:
@@ -141,13 +172,13 @@ def refine_with_sesame(
 
     result = sesame(problem, budgets, seed=seed, on_sample=report)
     if result.plan is None:
-        kitchen.scene.restore_state(initial.scene)
+        initial.restore(kitchen)
         return SesameRefinement(None, result)
     steps = [step.trajectory.actions[0] for step in result.plan.steps]
     records = tuple(
         _renumbered(sampler.records[id(trajectory)], index) for index, trajectory in enumerate(steps)
     )
-    kitchen.scene.restore_state(result.plan.final_state.scene)
+    result.plan.final_state.restore(kitchen)
     return SesameRefinement(RefinedKitchenPlan(KitchenTrajectory(tuple(steps)), records), result)
 
 

@@ -47,6 +47,9 @@ class ActionSampleRecord:
     waypoints: int
     rejections: tuple[str, ...]
     seconds: Mapping[str, float] = field(default_factory=dict)
+    skill_failure: SkillFailure | None = None
+    """The skill's failure when it found no targets (kind, obstructing objects, region): for
+    the planner, not the report."""
 
     def figures(self) -> dict[str, object]:
         """The record as report data, without wall-clock figures."""
@@ -98,6 +101,7 @@ def refine_action(
             waypoints=0,
             rejections=(str(failure),),
             seconds=seconds,
+            skill_failure=failure,
         )
     skills_s = time.perf_counter() - clock
     start = kitchen.arm_configuration()

@@ -7,7 +7,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from kitchen_tamp.kitchen.scene.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
-from kitchen_tamp.shipped_kitchens import default_scene_path, domain_for, find_problem, scene_for
+from kitchen_tamp.shipped_kitchens import (
+    default_domain_path,
+    default_scene_path,
+    domain_for,
+    find_problem,
+    scene_for,
+)
 
 
 @dataclass(frozen=True)
@@ -19,10 +25,12 @@ class SceneChoice:
     scene: Path
 
     def kitchen_map(self) -> KitchenMap:
-        """The kitchen of ``scene`` (raises ``SceneFileError`` for a bad scene file)."""
-        if self.scene.resolve() == default_scene_path().resolve():
+        """The kitchen of ``scene`` bound to ``domain`` (raises ``SceneFileError`` for a bad
+        scene file, ``BindingFileError`` for a domain without a good binding)."""
+        default_domain = self.domain.resolve() == default_domain_path().resolve()
+        if default_domain and self.scene.resolve() == default_scene_path().resolve():
             return default_kitchen_map()
-        return load_kitchen_map(self.scene)
+        return load_kitchen_map(self.scene, self.domain)
 
 
 def choose_scene(problem: str | Path, scene: Path | None = None, domain: Path | None = None) -> SceneChoice:

@@ -4,13 +4,14 @@
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from types import TracebackType
 
 import numpy as np
 
 from kitchen_tamp.kitchen.scene.kitchen_map import KitchenMap, default_kitchen_map
-from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners, box_size, support_region
+from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners, box_size, support_region, top_face
+from kitchen_tamp.planning import Atom
 from kitchen_tamp.world import (
     AllowedContact,
     Body,
@@ -43,6 +44,9 @@ class KitchenScene:
         self.home = home
         self.map = kitchen_map if kitchen_map is not None else default_kitchen_map()
         self.ik = InverseKinematics(robot)
+        self.conditions: set[Atom] = set()
+        """The atoms of states geometry does not show (``clean``, ``cooked``; see
+        ``kitchen_tamp.kitchen.conditions``)."""
 
     # -- lifetime ---------------------------------------------------------------------------
     def close(self) -> None:
@@ -78,10 +82,22 @@ class KitchenScene:
         symbol = self.map.openables[openable]
         return support_region(self.kitchen, symbol.floor_link, openable, ceiling_link=symbol.link)
 
+    def region_region(self, region: str) -> SupportRegion:
+        """The face of a region's slab (a plate, a sink) where boxes stand on it."""
+        return support_region(self.kitchen, self.map.regions[region].link, region)
+
+    def box_top(self, box: str) -> SupportRegion:
+        """The face of ``box`` that points up (now), where another box may stand."""
+        return top_face(self.boxes[box].base_pose(), self.box_size(box), box)
+
     def region(self, name: str) -> SupportRegion:
-        """The region of a surface or an openable."""
+        """Where boxes stand on a surface, a region, an openable or a box."""
         if name in self.map.surfaces:
             return self.surface_region(name)
+        if name in self.map.regions:
+            return self.region_region(name)
+        if name in self.boxes:
+            return self.box_top(name)
         return self.openable_region(name)
 
     # -- drawers ---------------------------------------------------------------------------------
@@ -166,13 +182,20 @@ class KitchenScene:
         checker: PyBulletCollisionChecker,
         rng: np.random.Generator,
         max_solutions: int,
+        rejected: Callable[[FloatArray], None] | None = None,
     ) -> FloatArray | None:
         """The first of up to ``max_solutions`` IK solutions (seeded from the home and the
-        current configuration, then random) that ``checker`` finds valid, or None."""
+        current configuration, then random) that ``checker`` finds valid, or None; then
+        ``rejected`` is called with the first solution ``checker`` refused, if there was one."""
         seeds = [self.home, self.arm_configuration()]
+        first_refused = None
         for q in itertools.islice(self.ik.solutions(world_from_tool, rng, seeds), max_solutions):
             if checker.is_valid(q)[0]:
                 return q
+            if first_refused is None:
+                first_refused = q
+        if rejected is not None and first_refused is not None:
+            rejected(first_refused)
         return None
 
     def arm_configuration(self) -> FloatArray:

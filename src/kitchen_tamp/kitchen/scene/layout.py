@@ -1,5 +1,6 @@
 """Build the kitchen scene for a problem: the robot on its mount, drawers opened or
-closed and boxes laid out on the surfaces or in the drawer named by ``:init``."""
+closed, boxes laid out where ``:init`` puts them (``start_poses``) and the conditions it
+names; Ψ of the result is checked against ``:init``."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, check_initial_state
+from kitchen_tamp.kitchen.conditions import conditions_among
 from kitchen_tamp.kitchen.contact_policy import check_initial_overlaps
 from kitchen_tamp.kitchen.errors import UnknownObjectError, UnsupportedInitialStateError
 from kitchen_tamp.kitchen.scene.kitchen_map import (
@@ -19,9 +21,17 @@ from kitchen_tamp.kitchen.scene.kitchen_map import (
     default_kitchen_map,
 )
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
-from kitchen_tamp.kitchen.scene.regions import SupportRegion, support_region
+from kitchen_tamp.kitchen.scene.models import CABINET_LINK
+from kitchen_tamp.kitchen.scene.regions import support_region
+from kitchen_tamp.kitchen.scene.start_poses import (
+    explicit_pose,
+    exposed_floor,
+    row_poses,
+    start_supports,
+    upright,
+)
 from kitchen_tamp.planning import Atom, Task, load_task
-from kitchen_tamp.world import PANDA, FloatArray, Pose, Robot, Scene, panda_urdf_path
+from kitchen_tamp.world import PANDA, Body, FloatArray, Pose, Robot, Scene, panda_urdf_path
 
 HOME_HEIGHT_ABOVE_SURFACES = 0.30
 """The arm's home pose holds the tool this high above the surfaces, pointing down."""
@@ -32,62 +42,18 @@ WORLD_FROM_TOOL_DOWN = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -
 
 def check_objects(objects: Mapping[str, str], kitchen_map: KitchenMap) -> None:
     """Raise ``UnknownObjectError`` (naming the scene file) for an object the kitchen lacks or
-    types differently."""
+    types differently (in the types of the kitchen map's binding)."""
     scene = kitchen_map.scene_path
     for name, type_name in sorted(objects.items()):
-        kitchen_type = kitchen_map.type_of(name)
-        if kitchen_type is None:
+        if kitchen_map.type_of(name) is None:
             known = ", ".join(kitchen_map.object_names())
             raise UnknownObjectError(name, f"the kitchen of {scene} only has {known}")
+        kitchen_type = kitchen_map.pddl_type_of(name)
         if kitchen_type != type_name:
+            called = kitchen_type or f"{kitchen_map.type_of(name)} the domain has no type for"
             raise UnknownObjectError(
-                name, f"it is a {kitchen_type} in the kitchen of {scene}, the problem says {type_name}"
+                name, f"it is a {called} in the kitchen of {scene}, the problem says {type_name}"
             )
-
-
-def box_locations(
-    init_atoms: Iterable[Atom], boxes: Iterable[str]
-) -> dict[str, str]:
-    """Box -> the surface or openable it starts on/in, checked to be exactly one place."""
-    locations: dict[str, list[str]] = {box: [] for box in boxes}
-    for atom in sorted(init_atoms):
-        if atom[0] == "holding":
-            raise UnsupportedInitialStateError(
-                f"(holding {atom[1]}) in :init: the kitchen starts with an empty hand; "
-                "put the box on a surface or in the drawer instead"
-            )
-        if atom[0] in ("boxOn", "boxIn") and atom[1] in locations:
-            locations[atom[1]].append(atom[2])
-    for box, places in locations.items():
-        if len(places) != 1:
-            where = "nowhere" if not places else " and ".join(places)
-            raise UnsupportedInitialStateError(
-                f"box {box!r} must start on exactly one surface or in one drawer, :init puts it {where}"
-            )
-    return {box: places[0] for box, places in locations.items()}
-
-
-def slot_poses(
-    region: SupportRegion, sizes: list[tuple[float, float, float]], gap: float = RESTING_GAP
-) -> list[Pose]:
-    """Upright box poses side by side along the region's longer side, centred."""
-    hx, hy = region.half_size
-    along = 0 if hx >= hy else 1
-    length = 2.0 * (hx if along == 0 else hy)
-    footprint = [s[along] for s in sizes]
-    spacing = (length - sum(footprint)) / (len(sizes) + 1)
-    if spacing <= 0.0 or any(s[1 - along] > 2.0 * (hy if along == 0 else hx) for s in sizes):
-        raise UnsupportedInitialStateError(f"the boxes do not fit side by side in {region.name!r}")
-    poses = []
-    cursor = -length / 2.0
-    for size, width in zip(sizes, footprint, strict=True):
-        cursor += spacing + width / 2.0
-        local = np.zeros(3)
-        local[along] = cursor
-        local[2] = size[2] / 2.0 + gap
-        poses.append(region.world_from_region @ Pose.from_parts(local, (0.0, 0.0, 0.0, 1.0)))
-        cursor += width / 2.0
-    return poses
 
 
 def home_configuration(kitchen: KitchenScene) -> FloatArray:
@@ -102,6 +68,41 @@ def home_configuration(kitchen: KitchenScene) -> FloatArray:
     if q is None:
         raise UnsupportedInitialStateError("the arm cannot reach its home pose above the counter")
     return q
+
+
+def lay_out_boxes(kitchen: KitchenScene, supports: Mapping[str, str]) -> None:
+    """Put every box on the support ``supports`` names (a box's base before it): the scene's start
+    if it gives one, else in rows; on a box, centred on its top face."""
+    places = sorted({s for s in supports.values() if s not in supports})
+    front = float(kitchen.kitchen.aabb(CABINET_LINK)[0][0])
+    for place in places:
+        names = [b for b in supports if supports[b] == place]
+        region = kitchen.region(place)
+        if place in kitchen.map.openables and kitchen.is_opened(place):
+            region = exposed_floor(region, front, names)
+        starts = {b: kitchen.map.boxes[b].start for b in names}
+        loose = [b for b in names if starts[b] is None]
+        sizes = [kitchen.box_size(b) for b in loose]
+        poses = dict(zip(loose, row_poses(region, loose, sizes, RESTING_GAP), strict=True))
+        for name, start in starts.items():
+            if start is not None:
+                poses[name] = explicit_pose(region, name, start, kitchen.box_size(name), RESTING_GAP)
+        for name in names:
+            _put(kitchen, kitchen.box(name), name, poses[name])
+    for name, base in supports.items():
+        if base in supports:
+            top, start = kitchen.box_top(base), kitchen.map.boxes[name].start
+            size = kitchen.box_size(name)
+            if start is None:
+                pose = upright(top, (0.0, 0.0), size, 0.0, RESTING_GAP)
+            else:
+                pose = explicit_pose(top, name, start, size, RESTING_GAP)
+            _put(kitchen, kitchen.box(name), name, pose)
+
+
+def _put(kitchen: KitchenScene, body: Body, name: str, pose: Pose) -> None:
+    kitchen.scene.set_base_pose(body, pose)
+    kitchen.settle(name)
 
 
 def build_kitchen(
@@ -119,8 +120,9 @@ def build_kitchen(
     init = frozenset(init_atoms)
     kitchen_map = kitchen_map if kitchen_map is not None else default_kitchen_map()
     check_objects(objects, kitchen_map)
-    boxes = sorted(n for n, t in objects.items() if t == "box")
-    locations = box_locations(init, boxes)
+    boxes = sorted(n for n in objects if kitchen_map.type_of(n) == "box")
+    supports = start_supports(init, boxes, kitchen_map)
+    opened_predicates = kitchen_map.binding.predicates_for("opened")
     scene = Scene(gui=gui)
     try:
         kitchen_body = scene.load_urdf(KITCHEN_BODY, kitchen_map.kitchen_urdf, fixed_base=True)
@@ -134,17 +136,13 @@ def build_kitchen(
         kitchen = KitchenScene(scene, robot, kitchen_body, box_bodies, np.zeros(robot.dof), kitchen_map)
         for openable in kitchen_map.openables:
             lower, upper = kitchen.opening_limits(openable)
-            opened = openable in objects and ("opened", openable) in init
+            opened = openable in objects and any((p, openable) in init for p in opened_predicates)
             kitchen.set_opening(openable, upper if opened else lower)
         kitchen.home = home_configuration(kitchen)
         robot.set_configuration(kitchen.home)
         kitchen.set_gripper_open()
-        for place in sorted(set(locations.values())):
-            names = [b for b in boxes if locations[b] == place]
-            poses = slot_poses(kitchen.region(place), [kitchen.box_size(b) for b in names])
-            for name, pose in zip(names, poses, strict=True):
-                scene.set_base_pose(box_bodies[name], pose)
-                kitchen.settle(name)
+        lay_out_boxes(kitchen, supports)
+        kitchen.conditions = conditions_among(kitchen_map.binding, init)
         check_initial_overlaps(kitchen)
         check_initial_state(kitchen, objects, init)
     except BaseException:

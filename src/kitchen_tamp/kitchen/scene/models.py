@@ -1,5 +1,6 @@
 """The URDF files of a kitchen, written from its scene file: the kitchen (cabinet with one cavity
-per drawer, slab, surfaces, drawers with handles, robot mount) and one file per box.
+per drawer, slab, surfaces with their regions, obstacles, drawers with handles, robot mount) and
+one file per box.
 
 ``model_texts`` gives the texts; ``model_files`` writes them once into a cache folder
 named by their content (never into the working folder), so PyBullet and Drake load
@@ -18,7 +19,15 @@ from types import MappingProxyType
 from typing import Final
 
 from kitchen_tamp.atomic_files import write_atomically
-from kitchen_tamp.kitchen.scene.spec import DrawerSpec, KitchenSpec, Rgba, SurfaceSpec, Vector
+from kitchen_tamp.kitchen.scene.spec import (
+    DrawerSpec,
+    KitchenSpec,
+    ObstacleSpec,
+    RegionSpec,
+    Rgba,
+    SurfaceSpec,
+    Vector,
+)
 from kitchen_tamp.user_cache import cache_directory
 
 KITCHEN_FILE: Final = "kitchen.urdf"
@@ -165,6 +174,20 @@ def surface_parts(spec: KitchenSpec, surface: SurfaceSpec) -> list[Part]:
     return parts
 
 
+def region_parts(spec: KitchenSpec, region: RegionSpec) -> list[Part]:
+    """A slab ``thickness`` thick on its surface's face."""
+    surface = spec.surface_named(region.surface)
+    assert surface is not None  # the scene's checks found it
+    (x0, x1), (y0, y1) = region.x_range, region.y_range
+    return [_box_between((x0, y0, surface.height), (x1, y1, surface.height + region.thickness), region.name)]
+
+
+def obstacle_parts(spec: KitchenSpec, obstacle: ObstacleSpec) -> list[Part]:
+    """A block from what it stands on up to its height."""
+    (x0, x1), (y0, y1) = obstacle.x_range, obstacle.y_range
+    return [_box_between((x0, y0, spec.obstacle_base(obstacle)), (x1, y1, obstacle.height), obstacle.name)]
+
+
 def drawer_xml(spec: KitchenSpec, drawer: DrawerSpec) -> str:
     """The tray (walls), its prismatic joint, its floor and its handle. The tray's frame is the
     outer front face's centre at the floor of the tray; the joint pulls it towards the robot."""
@@ -224,6 +247,7 @@ def kitchen_urdf(spec: KitchenSpec) -> str:
         if surface.burners and all(m != "burner" for m, _ in materials):
             materials.append(("burner", BURNER_COLOUR))
     materials += [(d.name, d.colour) for d in spec.drawers]
+    materials += [(r.name, r.colour) for r in spec.regions] + [(o.name, o.colour) for o in spec.obstacles]
     materials += [("handle", HANDLE_COLOUR), ("mount", spec.mount.colour)]
     mx, my = spec.mount.size
     mount = [_box_between((-mx / 2, -my / 2, 0.0), (mx / 2, my / 2, spec.mount.height), "mount")]
@@ -233,6 +257,12 @@ def kitchen_urdf(spec: KitchenSpec) -> str:
     for surface in spec.surfaces:
         text += _link_xml(surface.name, surface_parts(spec, surface))
         text += _fixed_joint_xml(CABINET_LINK, surface.name)
+    for region in spec.regions:
+        text += _link_xml(region.name, region_parts(spec, region))
+        text += _fixed_joint_xml(CABINET_LINK, region.name)
+    for obstacle in spec.obstacles:
+        text += _link_xml(obstacle.name, obstacle_parts(spec, obstacle))
+        text += _fixed_joint_xml(CABINET_LINK, obstacle.name)
     text += "".join(drawer_xml(spec, drawer) for drawer in spec.drawers)
     return text + "</robot>\n"
 

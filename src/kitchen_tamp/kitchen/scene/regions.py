@@ -1,4 +1,5 @@
-"""Regions of the kitchen computed from link geometry: where boxes may stand."""
+"""Regions of the kitchen computed from geometry: where boxes may stand (a link's top face, or
+the face of a box that points up)."""
 
 from __future__ import annotations
 
@@ -53,6 +54,22 @@ def support_region(body: Body, link: str, name: str, ceiling_link: str | None = 
     if ceiling_link is not None:
         ceiling = max(ceiling, float(body.aabb(ceiling_link)[1][2]))
     return SupportRegion(name, world_from_region, (shape.size[0] / 2.0, shape.size[1] / 2.0), ceiling)
+
+
+def top_face(world_from_box: Pose, size: tuple[float, float, float], name: str) -> SupportRegion:
+    """The face of a box that points up, as the region another box may be stacked on (its
+    ceiling is the face itself)."""
+    rotation = world_from_box.rotation
+    up = int(np.argmax(np.abs(rotation[2, :])))
+    sign = 1.0 if rotation[2, up] > 0.0 else -1.0
+    first, second = (i for i in range(3) if i != up)
+    x_axis, y_axis = rotation[:, first], rotation[:, second] * sign
+    z_axis = sign * rotation[:, up]
+    if float(np.dot(np.cross(x_axis, y_axis), z_axis)) < 0.0:
+        y_axis = -y_axis
+    centre = world_from_box.translation + z_axis * size[up] / 2.0
+    face = Pose.from_rotation(centre, np.column_stack([x_axis, y_axis, z_axis]))
+    return SupportRegion(name, face, (size[first] / 2.0, size[second] / 2.0), float(centre[2]))
 
 
 def box_size(body: Body) -> tuple[float, float, float]:

@@ -1,5 +1,6 @@
-"""What a kitchen's scene file says, as data: the counter, its surfaces and drawers, the boxes,
-the robot on its mount; and the one error a bad scene file gets (``SceneFileError``).
+"""What a kitchen's scene file says, as data: the counter, its surfaces (with regions on them),
+drawers and fixed obstacles, the boxes, the robot on its mount; and the one error a bad scene
+file gets (``SceneFileError``).
 
 Frames: x points from the robot to the counter, y to the robot's left, z up; the
 kitchen's base frame sits on the floor below the robot. All lengths in metres. The
@@ -75,6 +76,33 @@ class SurfaceSpec:
 
 
 @dataclass(frozen=True)
+class RegionSpec:
+    """A ``region`` on a surface (a plate, a tray, a sink, a burner): a thin slab on the surface's
+    face that objects stand on, named so a domain can say what is on it. ``kind`` is a word a
+    domain's binding may give its own PDDL type (``sink``, ``burner``); default ``region``."""
+
+    name: str
+    surface: str
+    x_range: Interval
+    y_range: Interval
+    thickness: float
+    kind: str
+    colour: Rgba
+
+
+@dataclass(frozen=True)
+class ObstacleSpec:
+    """A fixed block (a wall, a shelf post) that is no symbol: it stands on the surface it lies
+    in, else on the counter's slab or the floor, up to ``height``."""
+
+    name: str
+    x_range: Interval
+    y_range: Interval
+    height: float
+    colour: Rgba
+
+
+@dataclass(frozen=True)
 class HandleSpec:
     """A bar in front of the drawer on two posts."""
 
@@ -112,6 +140,15 @@ class DrawerSpec:
 
 
 @dataclass(frozen=True)
+class StartSpec:
+    """A box's start on its support (which the problem's ``:init`` names): the centre's (x, y)
+    in the kitchen frame and a turn about z, in degrees."""
+
+    xy: tuple[float, float]
+    yaw_degrees: float
+
+
+@dataclass(frozen=True)
 class BoxSpec:
     """A ``box``: a rigid graspable box with its own URDF."""
 
@@ -120,6 +157,8 @@ class BoxSpec:
     mass: float
     friction: float
     colour: Rgba
+    start: StartSpec | None = None
+    """Where the box starts, if the scene says (else the layout finds a place)."""
 
 
 @dataclass(frozen=True)
@@ -143,13 +182,32 @@ class KitchenSpec:
     surfaces: tuple[SurfaceSpec, ...]
     drawers: tuple[DrawerSpec, ...]
     boxes: tuple[BoxSpec, ...]
+    regions: tuple[RegionSpec, ...] = ()
+    obstacles: tuple[ObstacleSpec, ...] = ()
 
-    def on_counter(self, surface: SurfaceSpec) -> bool:
+    def surface_named(self, name: str) -> SurfaceSpec | None:
+        """The surface called ``name``, if any."""
+        return next((s for s in self.surfaces if s.name == name), None)
+
+    def on_counter(self, surface: SurfaceSpec | ObstacleSpec) -> bool:
         """Whether ``surface`` rests on the counter's slab (else it stands on the floor)."""
         counter = self.counter
         return overlap(surface.x_range, counter.x_range) and overlap(surface.y_range, counter.y_range)
+
+    def obstacle_base(self, obstacle: ObstacleSpec) -> float:
+        """The height an obstacle stands on: the face of the surface it lies in, else the
+        counter's top if it is over the counter, else the floor."""
+        for surface in self.surfaces:
+            if contains(surface.x_range, obstacle.x_range) and contains(surface.y_range, obstacle.y_range):
+                return surface.height
+        return self.counter.height if self.on_counter(obstacle) else 0.0
 
 
 def overlap(a: Interval, b: Interval) -> bool:
     """Whether two open intervals share a stretch."""
     return a[0] < b[1] and b[0] < a[1]
+
+
+def contains(outer: Interval, inner: Interval) -> bool:
+    """Whether ``inner`` lies within ``outer``."""
+    return outer[0] <= inner[0] and inner[1] <= outer[1]

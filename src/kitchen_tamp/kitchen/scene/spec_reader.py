@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any, Final
 
 from kitchen_tamp.kitchen.scene.checks import check_layout
+from kitchen_tamp.kitchen.scene.region_checks import check_regions_and_obstacles
 from kitchen_tamp.kitchen.scene.spec import (
     ROBOT_MODELS,
     BoxSpec,
@@ -26,8 +27,11 @@ from kitchen_tamp.kitchen.scene.spec import (
     Interval,
     KitchenSpec,
     MountSpec,
+    ObstacleSpec,
+    RegionSpec,
     Rgba,
     SceneFileError,
+    StartSpec,
     SurfaceSpec,
     Vector,
 )
@@ -36,14 +40,16 @@ __all__ = ["SceneFileError", "parse_scene", "read_scene"]
 
 NAME_PATTERN: Final = re.compile(r"[A-Za-z][A-Za-z0-9_\-]*")
 SCHEMA_KEYS: Final = {
-    "": ("name", "robot", "counter", "surfaces", "drawers", "boxes"),
+    "": ("name", "robot", "counter", "surfaces", "drawers", "boxes", "regions", "obstacles"),
     "robot": ("model", "mount"),
     "mount": ("size", "height", "colour"),
     "counter": ("front", "depth", "width", "height", "slab", "panel", "colour", "slab_colour"),
     "surfaces": ("name", "extent", "height", "colour", "burners"),
     "drawers": ("name", "handle", "size", "y", "travel", "wall", "gap", "colour"),
     "handle": ("bar", "standoff", "post"),
-    "boxes": ("name", "size", "mass", "friction", "colour"),
+    "boxes": ("name", "size", "mass", "friction", "colour", "at", "yaw"),
+    "regions": ("name", "surface", "extent", "kind", "thickness", "colour"),
+    "obstacles": ("name", "extent", "height", "colour"),
 }
 """The keys each kind of table may hold: a missing key's hint proposes only a present key that is
 none of them (a misspelling), never another key of the schema."""
@@ -184,9 +190,12 @@ def parse_scene(path: Path, data: Mapping[str, object]) -> KitchenSpec:
     surfaces = tuple(_surface(t) for t in root.tables("surfaces"))
     drawers = tuple(_drawer(t) for t in root.tables("drawers"))
     boxes = tuple(_box(t) for t in root.tables("boxes"))
+    regions = tuple(_region(t) for t in root.tables("regions"))
+    obstacles = tuple(_obstacle(t) for t in root.tables("obstacles"))
     root.finish()
-    spec = KitchenSpec(path, name, robot, mount, counter, surfaces, drawers, boxes)
+    spec = KitchenSpec(path, name, robot, mount, counter, surfaces, drawers, boxes, regions, obstacles)
     check_layout(spec)
+    check_regions_and_obstacles(spec)
     return spec
 
 
@@ -207,21 +216,57 @@ def _counter(table: _Table) -> CounterSpec:
     return counter
 
 
-def _surface(table: _Table) -> SurfaceSpec:
-    name = table.named()
+def _extent(table: _Table) -> tuple[Interval, Interval]:
     extent = table.raw("extent")
     if not isinstance(extent, list) or len(extent) != 2:
         raise table.error("extent", f"expected [[x_low, x_high], [y_low, y_high]], got {extent!r}")
+    return table.interval(extent[0], "extent"), table.interval(extent[1], "extent")
+
+
+def _surface(table: _Table) -> SurfaceSpec:
+    name = table.named()
+    x_range, y_range = _extent(table)
     surface = SurfaceSpec(
-        name,
-        table.interval(extent[0], "extent"),
-        table.interval(extent[1], "extent"),
-        table.number("height"),
-        table.colour("colour"),
-        table.flag("burners", False),
+        name, x_range, y_range, table.number("height"), table.colour("colour"), table.flag("burners", False)
     )
     table.finish()
     return surface
+
+
+REGION_THICKNESS: Final = 0.01
+"""Default thickness (m) of a region's slab on its surface."""
+
+
+def _region(table: _Table) -> RegionSpec:
+    name = table.named()
+    surface = table.text("surface")
+    x_range, y_range = _extent(table)
+    kind = table.text("kind", "region")
+    if not NAME_PATTERN.fullmatch(kind):
+        raise table.error("kind", f"{kind!r} is not a PDDL name (a letter, then letters, digits, _ or -)")
+    region = RegionSpec(
+        name, surface, x_range, y_range, table.number("thickness", REGION_THICKNESS), kind,
+        table.colour("colour"),
+    )
+    table.finish()
+    return region
+
+
+def _obstacle(table: _Table) -> ObstacleSpec:
+    name = table.named()
+    x_range, y_range = _extent(table)
+    obstacle = ObstacleSpec(name, x_range, y_range, table.number("height"), table.colour("colour", GREY))
+    table.finish()
+    return obstacle
+
+
+def _start(table: _Table) -> StartSpec | None:
+    if "at" not in table.data:
+        if "yaw" in table.data:
+            raise table.error("yaw", "a turn needs a start position: give 'at' = [x, y] too")
+        return None
+    x, y = table.numbers("at", 2, positive=False)
+    return StartSpec((x, y), table.number("yaw", 0.0, positive=False))
 
 
 def _drawer(table: _Table) -> DrawerSpec:
@@ -257,6 +302,7 @@ def _box(table: _Table) -> BoxSpec:
         table.number("mass"),
         table.number("friction"),
         table.colour("colour"),
+        _start(table),
     )
     table.finish()
     return box

@@ -8,12 +8,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from kitchen_tamp.kitchen.action_replay import first_problem, pull_direction
-from kitchen_tamp.kitchen.errors import SkillFailure
+from kitchen_tamp.kitchen.binding import ActionBinding
+from kitchen_tamp.kitchen.errors import FailureKind, SkillFailure
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.skills.grasps import sample_handle_grasp
 from kitchen_tamp.kitchen.skills.parameters import SkillParameters
-from kitchen_tamp.kitchen.skills.straight_moves import hold_still, reach_along_tool_axis, straight_move
+from kitchen_tamp.kitchen.skills.sampling_loop import Rejections, sample_skill
+from kitchen_tamp.kitchen.skills.straight_moves import (
+    all_valid,
+    hold_still,
+    reach_along_tool_axis,
+    straight_move,
+)
 from kitchen_tamp.kitchen.skills.targets import SkillTargets, action_text
 from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
 
@@ -27,25 +34,6 @@ class HandleGeometry:
     free_half_length: float
 
 
-@dataclass(frozen=True, eq=False)
-class OpenProblem:
-    """What every handle grasp sample of one opening shares."""
-
-    openable: str
-    joint: str
-    start: float
-    goal: float
-    pull_direction: FloatArray
-    q_now: FloatArray
-    open_width: float
-    free_checker: PyBulletCollisionChecker
-    clear_checker: PyBulletCollisionChecker
-    handle_checker: PyBulletCollisionChecker
-    released_checker: PyBulletCollisionChecker
-    strict_released_checker: PyBulletCollisionChecker
-    handle_contact: AllowedContact
-
-
 def handle_geometry(
     kitchen: KitchenScene, openable: str, direction: FloatArray, parameters: SkillParameters
 ) -> HandleGeometry:
@@ -54,7 +42,9 @@ def handle_geometry(
     world_from_com = kitchen.kitchen.link_com_pose(link)
     shapes = [(world_from_com @ s.com_from_box, s.size) for s in kitchen.kitchen.box_shapes(link)]
     if not shapes:
-        raise SkillFailure(f"(open {openable})", f"handle link {link!r} has no box shapes")
+        raise SkillFailure(
+            f"(open {openable})", f"handle link {link!r} has no box shapes", FailureKind.PRECONDITION
+        )
     world_from_bar, bar_size = max(shapes, key=lambda s: float(np.dot(s[0].translation, direction)))
     long_axis = world_from_bar.rotation[:, int(np.argmax(bar_size))]
     free = max(bar_size) / 2.0
@@ -88,74 +78,124 @@ def _checkers(
         return free, clear, on_handle, released, kitchen.collision_checker(margin=clearance)
 
 
-def _segments_for_grasp(
-    kitchen: KitchenScene,
-    action: tuple[str, tuple[str, ...]],
-    problem: OpenProblem,
-    world_from_tool: Pose,
-    width: float,
-    rng: np.random.Generator,
-    parameters: SkillParameters,
-) -> tuple[Segment, ...] | None:
-    """Approach, grip, pull, release and retreat for one handle grasp, or None (also when the
-    judge would find a problem replaying them)."""
-    reached = reach_along_tool_axis(
-        kitchen, world_from_tool, problem.handle_checker, problem.clear_checker, rng, parameters
-    )
-    if reached is None:
-        return None
-    q_grasp, approach_path = reached
-    distance = problem.goal - problem.start
-    pull = straight_move(kitchen, q_grasp, world_from_tool, distance * problem.pull_direction, parameters)
-    if pull is None:
-        return None
-    drawer_values = problem.start + np.linspace(0.0, distance, len(pull))
-    joint = [problem.joint]
-    if not problem.handle_checker.is_valid_along(pull, kitchen.kitchen, joint, drawer_values).all():
-        return None
-    world_from_pulled = world_from_tool.translated(distance * problem.pull_direction)
-    retreat = straight_move(
-        kitchen, pull[-1], world_from_pulled, -parameters.pregrasp_distance * world_from_tool.rotation[:, 2],
-        parameters,
-    )
-    if retreat is None or not problem.released_checker.is_valid(retreat).all():
-        return None
-    if not problem.strict_released_checker.is_valid(retreat[-1])[0]:
-        return None
-    grip_qs, grip_widths = hold_still(q_grasp, (problem.open_width, width))
-    release_qs, release_widths = hold_still(pull[-1], (width, problem.open_width))
-    open_width = problem.open_width
-    segments = (
-        Segment("approach", approach_path, np.full(len(approach_path), open_width)),
-        Segment("grip", grip_qs, grip_widths),
-        Segment("pull", pull, np.full(len(pull), width)),
-        Segment("release", release_qs, release_widths),
-        Segment("retreat", retreat, np.full(len(retreat), open_width)),
-    )
-    return None if first_problem(kitchen, action_text(action), action[1], segments) else segments
+HandleGrasp = tuple[Pose, float]
+"""A grasp of the handle bar: the tool's pose and the finger width."""
+
+
+@dataclass(frozen=True, eq=False)
+class OpenProblem:
+    """What every handle grasp sample of one opening shares; a ``SkillProblem`` of handle grasps."""
+
+    kitchen: KitchenScene
+    action: tuple[str, tuple[str, ...]]
+    parameters: SkillParameters
+    handle: HandleGeometry
+    openable: str
+    joint: str
+    start: float
+    goal: float
+    pull_direction: FloatArray
+    q_now: FloatArray
+    open_width: float
+    free_checker: PyBulletCollisionChecker
+    clear_checker: PyBulletCollisionChecker
+    handle_checker: PyBulletCollisionChecker
+    released_checker: PyBulletCollisionChecker
+    strict_released_checker: PyBulletCollisionChecker
+    handle_contact: AllowedContact
+
+    @property
+    def action_text(self) -> str:
+        return action_text(self.action)
+
+    def draw(self, rng: np.random.Generator, rejections: Rejections) -> HandleGrasp:
+        handle = self.handle
+        return sample_handle_grasp(
+            handle.world_from_bar, handle.bar_size, self.pull_direction, handle.free_half_length, rng
+        )
+
+    def segments(
+        self, grasp: HandleGrasp, rng: np.random.Generator, rejections: Rejections
+    ) -> tuple[Segment, ...] | None:
+        """Approach, grip, pull, release and retreat for one handle grasp, or None (also when the
+        judge would find a problem replaying them)."""
+        kitchen, parameters = self.kitchen, self.parameters
+        world_from_tool, width = grasp
+        reached = reach_along_tool_axis(
+            kitchen, world_from_tool, self.handle_checker, self.clear_checker, rng, parameters, rejections
+        )
+        if reached is None:
+            return None
+        q_grasp, approach_path = reached
+        distance = self.goal - self.start
+        pull = straight_move(kitchen, q_grasp, world_from_tool, distance * self.pull_direction, parameters)
+        if pull is None:
+            return None
+        drawer_values = self.start + np.linspace(0.0, distance, len(pull))
+        if not self.handle_checker.is_valid_along(pull, kitchen.kitchen, [self.joint], drawer_values).all():
+            return None
+        world_from_pulled = world_from_tool.translated(distance * self.pull_direction)
+        retreat = straight_move(
+            kitchen, pull[-1], world_from_pulled,
+            -parameters.pregrasp_distance * world_from_tool.rotation[:, 2], parameters,
+        )
+        if retreat is None or not all_valid(self.released_checker, retreat, rejections):
+            return None
+        if not all_valid(self.strict_released_checker, retreat[-1:], rejections):
+            return None
+        grip_qs, grip_widths = hold_still(q_grasp, (self.open_width, width))
+        release_qs, release_widths = hold_still(pull[-1], (width, self.open_width))
+        open_width = self.open_width
+        segments = (
+            Segment("approach", approach_path, np.full(len(approach_path), open_width)),
+            Segment("grip", grip_qs, grip_widths),
+            Segment("pull", pull, np.full(len(pull), width)),
+            Segment("release", release_qs, release_widths),
+            Segment("retreat", retreat, np.full(len(retreat), open_width)),
+        )
+        return None if first_problem(kitchen, self.action_text, self.action[1], segments) else segments
+
+    def targets(self, segments: tuple[Segment, ...], samples_tried: int) -> SkillTargets:
+        return SkillTargets(
+            action=self.action,
+            goal_configuration=segments[0].configurations[0],
+            held_box=None,
+            gripper_width=self.open_width,
+            segments=segments,
+            free_space_checker=self.free_checker,
+            samples_tried=samples_tried,
+        )
+
+    def exhausted(self, attempts: int) -> str:
+        return f"no reachable collision-free handle grasp in {attempts} samples"
 
 
 def sample_open(
     kitchen: KitchenScene,
     action: tuple[str, tuple[str, ...]],
-    openable: str,
+    binding: ActionBinding,
     rng: np.random.Generator,
     parameters: SkillParameters,
 ) -> SkillTargets:
-    """Targets for pulling ``openable`` fully open by its handle."""
+    """Targets for pulling the ``drawer`` fully open by its handle."""
     text = action_text(action)
+    openable = binding.argument("drawer", action[1])
+    assert openable is not None  # a required role
     held = kitchen.held_box()
     if held is not None:
-        raise SkillFailure(text, f"the hand holds {held}")
+        raise SkillFailure(text, f"the hand holds {held}", FailureKind.PRECONDITION)
     if kitchen.is_opened(openable):
-        raise SkillFailure(text, f"{openable} is already open")
+        raise SkillFailure(text, f"{openable} is already open", FailureKind.PRECONDITION, region=openable)
     direction = pull_direction(kitchen, openable)
-    handle = handle_geometry(kitchen, openable, direction, parameters)
     goal = kitchen.opening_limits(openable)[1]
     free, clear, on_handle, released, strict_released = _checkers(
         kitchen, openable, goal, parameters.free_space_clearance
     )
     problem = OpenProblem(
+        kitchen=kitchen,
+        action=action,
+        parameters=parameters,
+        handle=handle_geometry(kitchen, openable, direction, parameters),
         openable=openable,
         joint=kitchen.map.openables[openable].joint,
         start=kitchen.opening(openable),
@@ -170,19 +210,4 @@ def sample_open(
         strict_released_checker=strict_released,
         handle_contact=kitchen.handle_contact(openable),
     )
-    for attempt in range(1, parameters.attempts + 1):
-        world_from_tool, width = sample_handle_grasp(
-            handle.world_from_bar, handle.bar_size, direction, handle.free_half_length, rng
-        )
-        segments = _segments_for_grasp(kitchen, action, problem, world_from_tool, width, rng, parameters)
-        if segments is not None:
-            return SkillTargets(
-                action=action,
-                goal_configuration=segments[0].configurations[0],
-                held_box=None,
-                gripper_width=problem.open_width,
-                segments=segments,
-                free_space_checker=free,
-                samples_tried=attempt,
-            )
-    raise SkillFailure(text, f"no reachable collision-free handle grasp in {parameters.attempts} samples")
+    return sample_skill(problem, rng, parameters, Rejections(kitchen, (), openable))

@@ -38,12 +38,18 @@ class SkillParameters:
     """IK solutions of one target pose tried for being collision-free before the next sample."""
     attempts: int = 40
     """Samples a skill tries before it gives up."""
+    placement_draws: int = 20
+    """Poses one placement sample may draw until one is clear of the boxes already there
+    (drawing costs no motion; the first is clear on an empty region)."""
+    placement_gap: float = 0.003
+    """A placed box keeps at least this far from the boxes beside it."""
 
     def __post_init__(self) -> None:
         if min(self.pregrasp_distance, self.lift_height, self.waypoint_step, self.max_joint_step) <= 0:
             raise ValueError(f"skill distances must be positive: {self}")
         probabilities = (self.keep_down_probability, self.hand_above_probability)
-        if min(probabilities) < 0.0 or sum(probabilities) > 1.0 or self.attempts < 1:
+        budgets = min(self.attempts, self.placement_draws)
+        if min(probabilities) < 0.0 or sum(probabilities) > 1.0 or budgets < 1:
             raise ValueError(f"invalid skill parameters: {self}")
         if not 0.0 < self.grasp_depth[0] <= self.grasp_depth[1]:
             raise ValueError(f"grasp depth range must be increasing and positive: {self.grasp_depth}")

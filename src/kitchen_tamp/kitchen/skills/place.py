@@ -1,5 +1,5 @@
-"""placeOn / placeIn: lower the held box straight onto a sampled stable pose, open the
-fingers, back the hand away along the grasp's approach."""
+"""place / place_in / stack: lower the held box straight onto a sampled stable pose clear of
+the boxes already there, open the fingers, back the hand away along the grasp's approach."""
 
 from __future__ import annotations
 
@@ -8,31 +8,127 @@ from dataclasses import dataclass
 import numpy as np
 
 from kitchen_tamp.kitchen.action_replay import first_problem
-from kitchen_tamp.kitchen.errors import SkillFailure
+from kitchen_tamp.kitchen.binding import ActionBinding
+from kitchen_tamp.kitchen.errors import FailureKind, SkillFailure
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.scene.regions import SupportRegion
 from kitchen_tamp.kitchen.segment import Segment
 from kitchen_tamp.kitchen.skills.parameters import SkillParameters
-from kitchen_tamp.kitchen.skills.placements import Placement, down_face, face_along, sample_placement
-from kitchen_tamp.kitchen.skills.straight_moves import hold_still, straight_approach, straight_move
+from kitchen_tamp.kitchen.skills.placements import (
+    Placement,
+    boxes_overlap,
+    down_face,
+    face_along,
+    overlaps_region,
+    sample_placement,
+)
+from kitchen_tamp.kitchen.skills.sampling_loop import Rejections, sample_skill
+from kitchen_tamp.kitchen.skills.straight_moves import all_valid, hold_still, straight_approach, straight_move
 from kitchen_tamp.kitchen.skills.targets import SkillTargets, action_text
 from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
 
 
+Neighbour = tuple[str, Pose, tuple[float, float, float]]
+"""A box already in the scene: its name, pose and size."""
+
+
 @dataclass(frozen=True, eq=False)
 class PlaceProblem:
-    """What every placement sample of one place shares."""
+    """What every placement sample of one place shares; a ``SkillProblem`` of placements."""
 
+    kitchen: KitchenScene
+    action: tuple[str, tuple[str, ...]]
+    parameters: SkillParameters
     box: str
+    size: tuple[float, float, float]
     region: SupportRegion
+    preferred: tuple[tuple[tuple[int, int], float], ...]
+    centre_inset: float | None
+    """Stacking: how far inside the top face the box's centre stays (None: its footprint does)."""
+    neighbours: tuple[Neighbour, ...]
+    excluded: tuple[SupportRegion, ...]
+    """Regions on the target surface: a box put on the surface stays off them."""
     box_from_tool: Pose
     width: float
     q_now: FloatArray
     open_width: float
     carrying_checker: PyBulletCollisionChecker
     clear_checker: PyBulletCollisionChecker
+
+    @property
+    def action_text(self) -> str:
+        return action_text(self.action)
+
+    def draw(self, rng: np.random.Generator, rejections: Rejections) -> Placement | None:
+        """A stable pose in the region clear of the boxes there (up to ``placement_draws`` tries,
+        which cost no motion), or None."""
+        for _ in range(self.parameters.placement_draws):
+            placement = sample_placement(self.region, self.size, rng, self.preferred, self.centre_inset)
+            if placement is None:
+                return None
+            pose = placement.world_from_box
+            if any(overlaps_region(pose, self.size, region) for region in self.excluded):
+                continue
+            gap = self.parameters.placement_gap
+            crowded = [n for n, at, size in self.neighbours if boxes_overlap(pose, self.size, at, size, gap)]
+            if rejections.placement(crowded):
+                return placement
+        return None
+
+    def segments(
+        self, placement: Placement, rng: np.random.Generator, rejections: Rejections
+    ) -> tuple[Segment, ...] | None:
+        """Descend, release and retreat for one placement, or None if infeasible."""
+        kitchen, parameters = self.kitchen, self.parameters
+        world_from_tool = placement.world_from_box @ self.box_from_tool
+        approach = world_from_tool.rotation[:, 2]
+        if approach[2] > 0.1:
+            return None
+        q_place = kitchen.collision_free_ik(
+            world_from_tool, self.carrying_checker, rng, parameters.ik_solutions,
+            rejected=lambda q: rejections.collided(self.carrying_checker, q),
+        )
+        if q_place is None:
+            return None
+        bottom = self.region.top_z
+        height = max(parameters.lift_height, self.region.ceiling_z + parameters.wall_clearance - bottom)
+        descent = straight_approach(kitchen, q_place, world_from_tool, -UP, height, parameters)
+        if descent is None or not all_valid(self.carrying_checker, descent, rejections):
+            return None
+        if not self.clear_checker.is_valid(descent[0])[0]:
+            rejections.collided(self.clear_checker, descent[0])
+            return None
+        retreat = straight_move(
+            kitchen, q_place, world_from_tool, -parameters.pregrasp_distance * approach, parameters
+        )
+        if retreat is None:
+            return None
+        touching, clear = _released_checkers(kitchen, self.box, q_place, parameters.free_space_clearance)
+        if not all_valid(touching, retreat, rejections) or not all_valid(clear, retreat[-1:], rejections):
+            return None
+        release_qs, release_widths = hold_still(q_place, (self.width, self.open_width))
+        segments = (
+            Segment("descend", descent, np.full(len(descent), self.width)),
+            Segment("release", release_qs, release_widths),
+            Segment("retreat", retreat, np.full(len(retreat), self.open_width)),
+        )
+        return None if first_problem(kitchen, self.action_text, self.action[1], segments) else segments
+
+    def targets(self, segments: tuple[Segment, ...], samples_tried: int) -> SkillTargets:
+        return SkillTargets(
+            action=self.action,
+            goal_configuration=segments[0].configurations[0],
+            held_box=self.box,
+            gripper_width=self.width,
+            segments=segments,
+            free_space_checker=self.carrying_checker,
+            samples_tried=samples_tried,
+        )
+
+    def exhausted(self, attempts: int) -> str:
+        return f"no reachable collision-free placement in {attempts} samples"
 
 
 def _released_checkers(
@@ -49,78 +145,61 @@ def _released_checkers(
         return touching, kitchen.collision_checker(margin=clearance)
 
 
-def _segments_for_placement(
-    kitchen: KitchenScene,
-    action: tuple[str, tuple[str, ...]],
-    problem: PlaceProblem,
-    placement: Placement,
-    rng: np.random.Generator,
-    parameters: SkillParameters,
-) -> tuple[Segment, ...] | None:
-    """Descend, release and retreat for one placement, or None if infeasible."""
-    world_from_tool = placement.world_from_box @ problem.box_from_tool
-    approach = world_from_tool.rotation[:, 2]
-    if approach[2] > 0.1:
-        return None
-    q_place = kitchen.collision_free_ik(
-        world_from_tool, problem.carrying_checker, rng, parameters.ik_solutions
-    )
-    if q_place is None:
-        return None
-    bottom = problem.region.top_z
-    height = max(parameters.lift_height, problem.region.ceiling_z + parameters.wall_clearance - bottom)
-    descent = straight_approach(kitchen, q_place, world_from_tool, -UP, height, parameters)
-    if descent is None or not problem.carrying_checker.is_valid(descent).all():
-        return None
-    if not problem.clear_checker.is_valid(descent[0])[0]:
-        return None
-    retreat = straight_move(
-        kitchen, q_place, world_from_tool, -parameters.pregrasp_distance * approach, parameters
-    )
-    if retreat is None:
-        return None
-    touching, clear = _released_checkers(kitchen, problem.box, q_place, parameters.free_space_clearance)
-    if not touching.is_valid(retreat).all() or not clear.is_valid(retreat[-1])[0]:
-        return None
-    release_qs, release_widths = hold_still(q_place, (problem.width, problem.open_width))
-    segments = (
-        Segment("descend", descent, np.full(len(descent), problem.width)),
-        Segment("release", release_qs, release_widths),
-        Segment("retreat", retreat, np.full(len(retreat), problem.open_width)),
-    )
-    return None if first_problem(kitchen, action_text(action), action[1], segments) else segments
+TARGET_ROLES = ("support", "drawer", "base")
+"""The role that names where ``place`` / ``place_in`` / ``stack`` put the box."""
 
 
 def sample_place(
     kitchen: KitchenScene,
     action: tuple[str, tuple[str, ...]],
-    box: str,
-    target: str,
+    binding: ActionBinding,
     rng: np.random.Generator,
     parameters: SkillParameters,
 ) -> SkillTargets:
-    """Targets for putting the held ``box`` on a surface or into an open drawer.
+    """Targets for putting the held ``object`` on a surface or region (``place``), into an open
+    drawer (``place_in``) or on the top face of a box (``stack``), clear of the boxes there.
 
     Stable poses are sampled in the target region (preferring the face that was
-    down when picked, then the face that puts the hand above the box); each is kept only if the hand can
+    down when picked, then the face that puts the hand above the box); each is kept only if it
+    overlaps no box already there and the hand can
     hold the box there with the grasp it has, lower it straight from above the
     region (and a drawer's walls), open the fingers and back away, all without
-    collision.
+    collision. When no sampled pose is free of the boxes there, the failure is ``full``.
     """
     text = action_text(action)
+    box = binding.argument("object", action[1])
+    target = next(t for role in TARGET_ROLES if (t := binding.argument(role, action[1])) is not None)
+    assert box is not None  # a required role
     if kitchen.held_box() != box:
-        raise SkillFailure(text, f"the hand does not hold {box}")
+        raise SkillFailure(text, f"the hand does not hold {box}", FailureKind.PRECONDITION)
     if target in kitchen.map.openables and not kitchen.is_opened(target):
-        raise SkillFailure(text, f"{target} is closed")
+        raise SkillFailure(text, f"{target} is closed", FailureKind.PRECONDITION, region=target)
     robot = kitchen.robot
     body = kitchen.box(box)
     attachment = kitchen.scene.attachment_of(body)
     assert attachment is not None
     hand_from_box = attachment.parent_link_from_child
     box_from_tool = (robot.hand_from_tool().inverse() @ hand_from_box).inverse()
+    hand_above = face_along(box_from_tool.rotation[:, 2])
+    region = kitchen.region(target)
     problem = PlaceProblem(
+        kitchen=kitchen,
+        action=action,
+        parameters=parameters,
         box=box,
-        region=kitchen.region(target),
+        size=kitchen.box_size(box),
+        region=region,
+        preferred=(
+            (down_face(body.base_pose()), parameters.keep_down_probability),
+            (hand_above, parameters.hand_above_probability),
+        ),
+        centre_inset=0.5 * min(region.half_size) if target in kitchen.boxes else None,
+        neighbours=tuple(
+            (name, kitchen.box(name).base_pose(), kitchen.box_size(name))
+            for name in kitchen.boxes
+            if name != box
+        ),
+        excluded=tuple(kitchen.region_region(r) for r in kitchen.map.regions_on(target)),
         box_from_tool=box_from_tool,
         width=robot.gripper_width(),
         q_now=kitchen.arm_configuration(),
@@ -128,25 +207,4 @@ def sample_place(
         carrying_checker=kitchen.collision_checker(),
         clear_checker=kitchen.collision_checker(margin=parameters.free_space_clearance),
     )
-    hand_above = face_along(box_from_tool.rotation[:, 2])
-    preferred = (
-        (down_face(body.base_pose()), parameters.keep_down_probability),
-        (hand_above, parameters.hand_above_probability),
-    )
-    size = kitchen.box_size(box)
-    for attempt in range(1, parameters.attempts + 1):
-        placement = sample_placement(problem.region, size, rng, preferred)
-        if placement is None:
-            continue
-        segments = _segments_for_placement(kitchen, action, problem, placement, rng, parameters)
-        if segments is not None:
-            return SkillTargets(
-                action=action,
-                goal_configuration=segments[0].configurations[0],
-                held_box=box,
-                gripper_width=problem.width,
-                segments=segments,
-                free_space_checker=problem.carrying_checker,
-                samples_tried=attempt,
-            )
-    raise SkillFailure(text, f"no reachable collision-free placement in {parameters.attempts} samples")
+    return sample_skill(problem, rng, parameters, Rejections(kitchen, (box,), target))

@@ -1,4 +1,5 @@
-"""Stable placements of a box in a support region, sampled from geometry."""
+"""Stable placements of a box in a support region, sampled from geometry, and the test of a
+placement against the boxes (and regions) already there."""
 
 from __future__ import annotations
 
@@ -8,8 +9,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP
-from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners
 from kitchen_tamp.world import FloatArray, Pose, rotation_about_axis
+
+Size = tuple[float, float, float]
 
 
 @dataclass(frozen=True)
@@ -39,13 +42,15 @@ def sample_placement(
     size: tuple[float, float, float],
     rng: np.random.Generator,
     preferred_down: Sequence[tuple[tuple[int, int], float]],
+    centre_inset: float | None = None,
 ) -> Placement | None:
     """A random stable pose of a box inside ``region``, or None if it cannot fit.
 
     ``preferred_down`` lists box faces (axis, sign) to put down with their
     probabilities; with the remaining probability any of the six faces is
     chosen. Position and yaw are uniform over the poses whose footprint lies
-    inside the region.
+    inside the region -- or, with ``centre_inset`` (stacking on a box's top face), whose
+    centre lies that far inside it: the box may overhang, its centre of mass is over the face.
     """
     draw = rng.random()
     face = None
@@ -61,7 +66,10 @@ def sample_placement(
     region_from_box_rotation = resting_rotation(down_axis, down_sign, yaw)
     half_extents = np.abs(region_from_box_rotation) @ (np.array(size) / 2.0)
     hx, hy = region.half_size
-    room = np.array([hx - half_extents[0], hy - half_extents[1]])
+    if centre_inset is None:
+        room = np.array([hx - half_extents[0], hy - half_extents[1]])
+    else:
+        room = np.array([hx - centre_inset, hy - centre_inset])
     if np.any(room < 0.0):
         return None
     local = np.array(
@@ -80,3 +88,46 @@ def face_along(direction_in_box: FloatArray) -> tuple[int, int]:
     """(axis, sign) of the box face whose normal is closest to a box-frame direction."""
     axis = int(np.argmax(np.abs(direction_in_box)))
     return axis, int(np.sign(direction_in_box[axis]))
+
+
+def _horizontal_axes(rotation: FloatArray) -> list[FloatArray]:
+    """The two box axes that lie flat (a box resting on a face), else the world's x and y."""
+    flat = [i for i in range(3) if abs(rotation[2, i]) < 0.5]
+    axes = [rotation[:2, i] / np.linalg.norm(rotation[:2, i]) for i in flat]
+    return axes if len(axes) == 2 else [np.array([1.0, 0.0]), np.array([0.0, 1.0])]
+
+
+def footprints_overlap(
+    points_a: FloatArray, axes_a: Sequence[FloatArray], points_b: FloatArray, axes_b: Sequence[FloatArray],
+    margin: float,
+) -> bool:
+    """Whether two convex footprints (their corner points in the plane and edge directions)
+    come closer than ``margin`` (separating axes)."""
+    for axis in (*axes_a, *axes_b):
+        a, b = points_a @ axis, points_b @ axis
+        if a.max() + margin <= b.min() or b.max() + margin <= a.min():
+            return False
+    return True
+
+
+def boxes_overlap(
+    world_from_a: Pose, size_a: Size, world_from_b: Pose, size_b: Size, margin: float
+) -> bool:
+    """Whether two boxes share height and their footprints come closer than ``margin``."""
+    corners_a, corners_b = box_corners(world_from_a, size_a), box_corners(world_from_b, size_b)
+    if corners_a[:, 2].max() <= corners_b[:, 2].min() or corners_b[:, 2].max() <= corners_a[:, 2].min():
+        return False
+    return footprints_overlap(
+        corners_a[:, :2], _horizontal_axes(world_from_a.rotation),
+        corners_b[:, :2], _horizontal_axes(world_from_b.rotation), margin,
+    )
+
+
+def overlaps_region(world_from_box: Pose, size: Size, region: SupportRegion) -> bool:
+    """Whether a box's footprint reaches over a region's rectangle."""
+    hx, hy = region.half_size
+    frame = region.world_from_region
+    corners = np.array([frame.apply((sx * hx, sy * hy, 0.0)) for sx in (-1, 1) for sy in (-1, 1)])
+    axes = [region.world_from_region.rotation[:2, i] for i in range(2)]
+    points = box_corners(world_from_box, size)[:, :2]
+    return footprints_overlap(points, _horizontal_axes(world_from_box.rotation), corners[:, :2], axes, 0.0)
