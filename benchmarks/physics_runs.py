@@ -6,8 +6,9 @@
 Each run is ``final_project.py MODE --no-video`` in its own process (with ``--replay``:
 ``final_project.py replay RUN_DIR --no-video`` on the trajectories a previous sweep kept
 in ``--out``). Prints one row per mode and problem (runs refined, kinematic verdicts,
-physics verdicts, median seconds of physics and of the whole run, physics' share of the
-run) and then every failure with its cause.
+physics verdicts, the largest joint tracking error and re-plans under physics over the runs,
+median seconds of physics and of the whole run, physics' share of the run) and then every
+failure with its cause.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import subprocess
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 PROBLEMS = ("problem.pddl", "problem_hard.pddl", "problem_baguette.pddl")
@@ -64,9 +66,9 @@ def cause(report: dict[str, object]) -> str:
 def summarize(rows: dict[tuple[str, str], list[tuple[int, dict[str, object]]]]) -> list[str]:
     """Print the table; return every failure with its cause."""
     failures: list[str] = []
-    print("| mode | problem | seeds | refined | kinematic verified | physics verified | median physics s "
-          "| median run s | physics share |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| mode | problem | seeds | refined | kinematic verified | physics verified | max tracking rad "
+          "| re-plans | median physics s | median run s | physics share |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for (mode, problem), runs in rows.items():
         reports = [report for _, report in runs]
         for seed, report in runs:
@@ -75,16 +77,19 @@ def summarize(rows: dict[tuple[str, str], list[tuple[int, dict[str, object]]]]) 
         refined = [r for r in reports if r.get("verification") is not None]
         kinematic = [r for r in refined if verdict(r.get("verification"))]
         physical = [r for r in refined if verdict(r.get("physics"))]
-        timed = [r["timing"] for r in refined if isinstance(r.get("timing"), dict)]
-        physics_s = [float(t["physics_s"]) for t in timed if "physics_s" in t]  # type: ignore[index]
-        total_s = [float(t["total_s"]) for t in timed if "total_s" in t]  # type: ignore[index]
+        timed: list[dict[str, Any]] = [r["timing"] for r in refined if isinstance(r.get("timing"), dict)]  # type: ignore[misc]
+        physics_s = [float(t["physics_s"]) for t in timed if "physics_s" in t]
+        total_s = [float(t["total_s"]) for t in timed if "total_s" in t]
         shares = [p / t for p, t in zip(physics_s, total_s, strict=False) if t > 0.0]
+        sections: list[dict[str, Any]] = [r["physics"] for r in refined if isinstance(r.get("physics"), dict)]  # type: ignore[misc]
+        tracking = max((float(s.get("max_joint_error_rad", 0.0)) for s in sections), default=0.0)
+        replans = sum(len(s.get("replans") or []) for s in sections)
         seeds = sorted(seed for seed, _ in runs)
         span = f"{seeds[0]}..{seeds[-1]}" if seeds else "-"
         print(f"| {mode} | {problem} | {span} | {len(refined)}/{len(reports)} "
               f"| {len(kinematic)}/{len(refined)} "
-              f"| {len(physical)}/{len(refined)} | {_median(physics_s)} | {_median(total_s)} "
-              f"| {_median(shares)} |", flush=True)
+              f"| {len(physical)}/{len(refined)} | {tracking:.3f} | {replans} | {_median(physics_s)} "
+              f"| {_median(total_s)} | {_median(shares)} |", flush=True)
     return failures
 
 

@@ -1,5 +1,6 @@
 """final_project.py end to end on the kitchen problems, headless: verified runs, the files
-they leave, determinism, replay, and every exit code."""
+they leave, determinism, replay (against the files the run recorded or the ones named, with
+their digests), a plan of no actions, and every exit code."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from kitchen_tamp.cli.final_project import main
 from kitchen_tamp.refinement import MotionSolution
 from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
 from tests.cli.interrupt import interrupt_once_printed
+from tests.conftest import KitchenRuns
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -29,11 +31,9 @@ def _without_timing(report: dict[str, Any]) -> dict[str, Any]:
 
 
 @pytest.fixture(scope="module")
-def hard_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """problem_hard.pddl with rrt, seed 1, with the GIF."""
-    out = tmp_path_factory.mktemp("hard")
-    assert main(["rrt", "--problem", "problem_hard.pddl", "--seed", "1", "--out", str(out)]) == 0
-    return out
+def hard_run(kitchen_runs: KitchenRuns) -> Path:
+    """problem_hard.pddl with rrt, seed 1, with the GIF (planned once per session)."""
+    return kitchen_runs.run_dir("problem_hard.pddl", "rrt", 1, video=True)
 
 
 @pytest.mark.slow
@@ -113,6 +113,63 @@ def test_replay_judges_in_the_kitchen_the_run_recorded(
     assert "the scene file this run planned in is gone" in capsys.readouterr().err
 
 
+def _weaker(problem: Path, folder: Path) -> Path:
+    """``problem`` with only its first goal atom, in ``folder``."""
+    text = problem.read_text()
+    weak = folder / "weak.pddl"
+    weak.write_text(text.replace("(boxOn sugar countertop)\n    (boxIn spam drawer)", "(boxIn spam drawer)"))
+    assert weak.read_text() != text
+    return weak
+
+
+@pytest.mark.slow
+def test_replay_names_the_files_it_judges_against_and_whether_they_are_the_runs(
+    kitchen_runs: KitchenRuns, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A copy that points at a weaker problem and stops early: judged against what it names it
+    verifies, and the verdict line says which problem that was and that it is not the one the
+    run planned with; judged against the run's problem (``--problem``) it is refused."""
+    run = kitchen_runs.run_dir("problem.pddl", "rrt", 0)
+    report = _report(run)
+    assert report["inputs"]["problem"]["matches_run"] is True and report["scene_path"]
+    data = json.loads((run / "trajectory.json").read_text())
+    recorded = data["sha256"]
+    assert set(recorded) == {"problem", "domain", "scene"}
+    original = Path(data["problem"])
+    data["problem"] = str(_weaker(original, tmp_path))
+    data["steps"] = data["steps"][:3]  # the sugar is never moved
+    (tmp_path / "trajectory.json").write_text(json.dumps(data))
+    capsys.readouterr()
+    assert main(["replay", str(tmp_path), "--no-video", "--no-physics"]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "judged against problem weak.pddl (DIFFERENT from the run's)" in last, last
+    assert "domain domain.pddl (as planned)" in last and "scene scene.toml (as planned)" in last
+    inputs = _report(tmp_path, "replay_report.json")["inputs"]
+    assert inputs["problem"]["matches_run"] is False and inputs["problem"]["sha256"] != recorded["problem"]
+    assert main(["replay", str(tmp_path), "--no-video", "--no-physics", "--problem", str(original)]) == 1
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "NOT SOLVED (verification)" in last and "judged against problem problem.pddl (as planned)" in last
+
+
+@pytest.mark.slow
+def test_a_plan_of_no_actions_is_solved_and_verified_by_both_judges(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    problem = tmp_path / "already.pddl"
+    text = (REPO / "pddl" / "problem.pddl").read_text()
+    problem.write_text(text.replace("(boxOn sugar countertop)\n    (boxIn spam drawer)",
+                                    "(boxOn sugar stove)\n    (boxOn spam countertop)"))
+    domain = REPO / "pddl" / "domain.pddl"
+    out = tmp_path / "run"
+    assert main(["rrt", "--problem", str(problem), "--domain", str(domain), "--out", str(out)]) == 0
+    report = _report(tmp_path / "run")
+    assert report["plan"] == [] and report["solved"] is True
+    assert report["verification"]["verified"] is True and report["physics"]["verified"] is True
+    assert report["verification"]["min_clearance_m"] is None  # nothing moved, nothing measured
+    assert "SOLVED and verified: 0 actions, collision-free (no motion)" in capsys.readouterr().out
+    assert main(["replay", str(tmp_path / "run"), "--no-video"]) == 0
+
+
 @pytest.mark.slow
 def test_same_seed_gives_the_same_report_apart_from_timing(tmp_path: Path) -> None:
     a, b = tmp_path / "a", tmp_path / "b"
@@ -163,7 +220,10 @@ def test_a_step_that_cannot_be_refined_exits_1_and_the_report_names_it(
     assert 2 <= plans <= 3 and plans == len(bilevel["plans"])  # every plan starts by opening the drawer
     assert bilevel["samples"] == bilevel["failures"] == 2 * plans
     assert all(plan["steps"][0]["samples"] == 2 for plan in bilevel["plans"])
-    assert "sample failed" in capsys.readouterr().out
+    most = f"most frequent failure ({2 * plans} of {2 * plans} failed samples): (open drawer): "
+    assert most in report["failure"]["reason"], report["failure"]["reason"]
+    out = capsys.readouterr().out
+    assert "sample failed" in out and most in out.strip().splitlines()[-1]
 
 
 def test_no_symbolic_plan_exits_1(tmp_path: Path) -> None:
@@ -208,7 +268,35 @@ def test_bad_input_exits_2_with_one_line(argv: list[str], capsys: pytest.Capture
         code = int(exit_.code or 0)
     assert code == 2
     err = capsys.readouterr().err
-    assert "Traceback" not in err and err.strip()
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        (["rrt", "--seed", "abc"], "error: argument --seed: not an integer: 'abc' (see final_project.py rrt"),
+        (["optimizes", "--waypoints", "1"], "argument --waypoints: must be at least 2, got 1"),
+        (["rrt", "--frobnicate"], "unrecognized arguments: --frobnicate"),
+        (["replay"], "the following arguments are required: RUN_DIR"),
+    ],
+)
+def test_a_command_line_mistake_is_one_line_naming_the_option(
+    argv: list[str], named: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and named in lines[0] and "--help" in lines[0], lines
+
+
+def test_an_out_no_one_can_write_is_refused_at_once_even_for_root(capsys: pytest.CaptureFixture[str]) -> None:
+    """Permission bits say nothing for root: the folder is made and probed before planning."""
+    assert main(["rrt", "--out", "/proc/no/such/dir", "--no-video"]) == 2
+    captured = capsys.readouterr()
+    assert captured.err.strip().splitlines() == [
+        "error: --out /proc/no/such/dir: cannot write there (No such file or directory)"]
+    assert captured.out == ""  # nothing was planned
 
 
 def test_gui_without_a_display_is_refused(

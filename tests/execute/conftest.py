@@ -1,33 +1,27 @@
-"""A kitchen plan refined once per test session (problem.pddl, seed 0), shared by the
-execute tests, which replay and tamper with copies of it."""
+"""The kitchen plan the execute tests replay and doctor: problem.pddl, rrt, seed 0, refined
+once per test session (``tests/conftest.py``), and the judge's verdict on it."""
 
 from __future__ import annotations
-
-from pathlib import Path
 
 import pytest
 
 from kitchen_tamp.execute import Verification, verify_trajectory
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
-from kitchen_tamp.planning import Task, load_task
-from kitchen_tamp.refinement import SamplingMotionBackend, refine_with_sesame
+from kitchen_tamp.planning import Task
+from tests.conftest import PDDL, KitchenRuns
 
-REPO = Path(__file__).resolve().parents[2]
-PROBLEM = REPO / "pddl" / "problem.pddl"
-
-
-@pytest.fixture(scope="session")
-def kitchen_task() -> Task:
-    return load_task(PROBLEM)
+PROBLEM = PDDL / "problem.pddl"
 
 
 @pytest.fixture(scope="session")
-def refined(kitchen_task: Task) -> KitchenTrajectory:
-    with build_kitchen_for_task(kitchen_task) as kitchen:
-        refined = refine_with_sesame(kitchen, kitchen_task, SamplingMotionBackend(), seed=0).refined
-    assert refined is not None
-    return refined.trajectory
+def kitchen_task(kitchen_runs: KitchenRuns) -> Task:
+    return kitchen_runs.refined().task
+
+
+@pytest.fixture(scope="session")
+def refined(kitchen_runs: KitchenRuns) -> KitchenTrajectory:
+    return kitchen_runs.refined().trajectory
 
 
 @pytest.fixture(scope="session")

@@ -1,11 +1,11 @@
-"""The physics time law keeps joints within their speed limit, stops at sharp corners and
-ends exactly at the last waypoint; grip events are found from gripper widths alone."""
+"""The physics time law keeps joints within their speed limit, stops at sharp corners, ends
+exactly at the last waypoint, and says where along the segment each moment is (so physics
+reads the judge's state there)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from kitchen_tamp.execute.physics.plan import grip_events
 from kitchen_tamp.execute.physics.time_law import TimeLaw, strokes
 
 LIMITS = np.array([2.0, 2.0, 1.0])
@@ -47,7 +47,15 @@ def test_a_gripper_only_segment_takes_the_time_the_fingers_need() -> None:
     assert np.allclose(widths, [0.08, 0.04])
 
 
-def test_grip_events_are_where_fingers_finish_closing_and_start_opening() -> None:
-    events = grip_events([np.full(4, 0.08), np.array([0.08, 0.06, 0.05]), np.full(3, 0.05),
-                          np.array([0.05, 0.05, 0.08])])
-    assert [(e.segment, e.waypoint, e.closing) for e in events] == [(1, 2, True), (3, 1, False)]
+def test_every_moment_is_located_on_its_waypoint_interval() -> None:
+    qs = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 0.0]])
+    first, second = strokes(qs, np.zeros(4), LIMITS, 0.2, TimeLaw())
+    assert (first.first, second.first) == (0, 1)
+    times = np.linspace(0.0, second.duration, 50)
+    intervals, fractions, _ = second.locate(times)
+    q, _, _ = second.sample(times)
+    assert np.all(np.diff(second.first + intervals) >= 0) and set(second.first + intervals) == {1, 2}
+    located = qs[second.first + intervals] + fractions[:, None] * (
+        qs[second.first + intervals + 1] - qs[second.first + intervals]
+    )
+    assert np.allclose(located, q)

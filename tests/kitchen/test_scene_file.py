@@ -63,6 +63,29 @@ def bad_name(data: dict[str, Any]) -> None:
     data["boxes"][1]["name"] = "spam can"
 
 
+def missing_depth(data: dict[str, Any]) -> None:
+    del data["counter"]["depth"]
+
+
+def counter_through_the_mount(data: dict[str, Any]) -> None:
+    data["counter"]["front"] = 0.05  # the mount reaches to x = 0.11
+
+
+def table_where_the_drawer_opens(data: dict[str, Any]) -> None:
+    data["surfaces"].append({"name": "table", "extent": [[-0.05, 0.30], [-0.45, -0.15]], "height": 0.40,
+                             "colour": [0.4, 0.5, 0.6, 1.0]})
+
+
+def drawer_into_the_mount(data: dict[str, Any]) -> None:
+    data["drawers"][0]["y"] = -0.10
+    data["drawers"][0]["size"] = [0.40, 0.20, 0.20]
+    data["drawers"][0]["travel"] = 0.38
+
+
+def drawer_too_wide(data: dict[str, Any]) -> None:
+    data["drawers"][0]["size"] = [0.34, 1.40, 0.20]
+
+
 MISTAKES: dict[str, tuple[Callable[[dict[str, Any]], None], str, str]] = {
     "missing key": (drop_height, "surfaces.countertop", "missing key 'height'"),
     "negative size": (negative_box, "boxes.sugar.size", "must be positive, got -0.04"),
@@ -75,6 +98,13 @@ MISTAKES: dict[str, tuple[Callable[[dict[str, Any]], None], str, str]] = {
     "unknown key": (extra_key, "boxes.sugar.flavour", "unknown key"),
     "not a PDDL name": (bad_name, "boxes[1].name", "'spam can' is not a PDDL name"),
     "surface half off the counter": (surface_off_the_edge, "surfaces.stove.extent", "partly on the counter"),
+    "missing key, no misspelling near": (missing_depth, "counter", "missing key 'depth'"),
+    "counter through the mount": (counter_through_the_mount, "counter.front", "cuts through the robot's"),
+    "floor table in the drawer's way": (
+        table_where_the_drawer_opens, "drawers.drawer.travel", "slides into surface 'table'"
+    ),
+    "drawer into the mount": (drawer_into_the_mount, "drawers.drawer.travel", "slides into the robot's"),
+    "drawer wider than the counter": (drawer_too_wide, "drawers.drawer.size", "does not fit the counter's"),
 }
 
 
@@ -91,7 +121,8 @@ def test_each_mistake_names_file_key_and_problem(mistake: str) -> None:
     ), message
     assert "\n" not in message
     assert raised.value.key == key
-
+    if mistake == "missing key, no misspelling near":
+        assert message.endswith("missing key 'depth'"), message  # 'width' is present: no hint
 
 def test_the_default_scene_reads_cleanly() -> None:
     spec = read_scene(default_scene_path())

@@ -3,7 +3,7 @@ stepping back to the pick, succeeds: pddl/problem_baguette.pddl.
 
 The baguette box (6 x 6 x 50 cm) is longer than the drawer's diagonal, so it fits in
 the drawer only standing up, and then only if the hand holds it above the drawer's
-walls. With seed 0 the first pick holds it so that no placement works; greedy
+walls. With seed 7 the first pick holds it so that no placement works; greedy
 refinement never revisits the pick and fails, SeSamE re-grasps.
 """
 
@@ -28,7 +28,7 @@ from kitchen_tamp.refinement import (
 pytestmark = pytest.mark.slow  # each test runs or replays a whole kitchen pipeline
 
 PROBLEM = Path(__file__).resolve().parents[2] / "pddl" / "problem_baguette.pddl"
-SEED = 0
+SEED = 7
 
 
 @pytest.fixture(scope="module")

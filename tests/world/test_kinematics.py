@@ -1,8 +1,19 @@
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
-from kitchen_tamp.world import IkOptions, InverseKinematics, Pose, Robot, Scene, straight_line
+from kitchen_tamp.world import (
+    IkOptions,
+    InverseKinematics,
+    Pose,
+    Robot,
+    Scene,
+    panda_urdf_path,
+    straight_line,
+)
+from kitchen_tamp.world.robot import safety_limits
 from tests.world.conftest import down_rotation
 
 
@@ -51,3 +62,20 @@ def test_straight_line_follow_keeps_tool_on_the_line(panda_scene: tuple[Scene, R
     assert np.max(np.abs(np.diff(path, axis=0))) <= 0.2
     for q, target in zip(path[1:], waypoints, strict=True):
         assert robot.forward_kinematics(q).distance_to(target)[0] <= 1e-3
+
+
+def test_joint_ranges_are_the_stricter_of_limit_and_safety_controller(
+    panda_scene: tuple[Scene, Robot], tmp_path: Path
+) -> None:
+    _, robot = panda_scene
+    soft = safety_limits(Path(panda_urdf_path()))
+    names = robot.description.arm_joints
+    assert set(names) <= set(soft)
+    for i, name in enumerate(names):
+        assert robot.lower[i] == max(robot.urdf_lower[i], soft[name][0])
+        assert robot.upper[i] == min(robot.urdf_upper[i], soft[name][1])
+    assert robot.upper[3] == -0.0698 and robot.urdf_upper[3] == 0.0  # the Panda's joint 4
+    assert np.all(robot.lower > robot.urdf_lower) and np.all(robot.upper < robot.urdf_upper)
+    broken = tmp_path / "broken.urdf"
+    broken.write_text("<robot")
+    assert safety_limits(broken) == {}

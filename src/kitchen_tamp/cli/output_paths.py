@@ -1,4 +1,10 @@
-"""Output locations checked before any planning, so that a run cannot end in a file it may not write."""
+"""Output locations checked before any planning, so that a run cannot end in a file it may not write.
+
+An output folder is made ready by creating it and writing a probe file in it
+(``prepare_output_folder``): permission bits say nothing for root, and a folder
+under ``/proc`` or on a read-only mount passes every ``os.access`` test. An
+output file (the planner's ``--plan-out``) is judged without creating anything.
+"""
 
 from __future__ import annotations
 
@@ -7,6 +13,9 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from pathlib import Path
+
+PROBE_NAME = ".kitchen_tamp_write_probe"
+"""The file ``prepare_output_folder`` writes and removes again."""
 
 
 class OutputPathError(Exception):
@@ -32,13 +41,18 @@ def _check_writable(folder: Path, given: Path, option: str) -> None:
         raise OutputPathError(f"{option} {given}: no permission to write in {existing}")
 
 
-def check_output_folder(folder: Path, option: str) -> None:
-    """Raise ``OutputPathError`` unless ``folder`` is, or could be created as, a folder we may write in.
-
-    Nothing is created: a missing folder is judged by its closest existing ancestor.
-    ``option`` names the command-line option (or default) the folder came from.
-    """
+def prepare_output_folder(folder: Path, option: str) -> None:
+    """Create ``folder`` (and its parents) and write and remove a probe file in it; raise
+    ``OutputPathError`` naming ``option`` (the command-line option or default it came from)
+    and the reason when either fails."""
     _check_writable(folder, folder, option)
+    probe = folder / PROBE_NAME
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as error:
+        raise OutputPathError(f"{option} {folder}: cannot write there ({error.strerror or error})") from None
 
 
 def check_output_file(path: Path, option: str) -> None:

@@ -2,11 +2,8 @@
 it under physics, and
 writing what a run leaves behind: report.json, trajectory.json, replay.gif, joints.png."""
 
-from kitchen_tamp.execute.physics.execution import (
-    PhysicsExecution,
-    execute_under_physics,
-    judge_under_physics,
-)
+from kitchen_tamp.execute.physics.execution import execute_under_physics, judge_under_physics
+from kitchen_tamp.execute.physics.verdict import PhysicsExecution
 from kitchen_tamp.execute.render.joint_plot import plot_joints
 from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, render_replay, write_gif
 from kitchen_tamp.execute.run_report import REPORT_FILE, RunReport

@@ -1,7 +1,7 @@
 """Comparing the atoms a scene shows with the atoms a plan expects: one wording for both judges.
 
 The kinematic judge (``verification``) and execution under physics
-(``physics_execution``) both ask, after each action, whether Ψ(scene) is the
+(``physics.execution``) both ask, after each action, whether Ψ(scene) is the
 planned state, and at the end which goal literals hold.
 """
 

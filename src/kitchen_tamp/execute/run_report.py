@@ -27,6 +27,10 @@ class RunReport:
     motion_planner: str
     seed: int
     symbolic_planner: str = "bfs"
+    scene: Path | None = None
+    """The kitchen scene file the run planned in (or is judged in)."""
+    inputs: dict[str, object] | None = None
+    """The ``inputs`` section: each input file's path, SHA-256 and whether it is the run's."""
     plan: list[str] | None = None
     steps: list[dict[str, object]] = field(default_factory=list)
     failure: dict[str, object] | None = None
@@ -81,6 +85,8 @@ class RunReport:
             "problem": self.problem.name,
             "problem_path": str(self.problem),
             "domain_path": str(self.domain),
+            "scene_path": None if self.scene is None else str(self.scene),
+            "inputs": self.inputs,
             "mode": self.mode,
             "motion_planner": self.motion_planner,
             "seed": self.seed,

@@ -10,17 +10,24 @@ intended (only the action's own objects, each at most
 ``CONTACT_PENETRATION_BOUND`` deep).
 
 Checked: the trajectory starts at the arm's home and is continuous; every
-segment is collision-free at states at most ``resolution`` rad apart, with
-every pair of ``kitchen_tamp.world.checked_pairs`` checked (boxes riding the
-drawer against the cabinet while it moves); the joint limits; fingers never
-close on nothing the action names; after every action the scene's abstraction
-Ψ is the state the symbolic plan predicts; at the end Ψ entails the goal.
+waypoint is within the joints' ranges and the hand's opening; every segment is
+collision-free at states at most ``resolution`` rad apart, with every pair of
+``kitchen_tamp.world.checked_pairs`` checked (boxes riding the drawer against
+the cabinet while it moves); a box let go of stands on something; a hand holding
+a handle keeps to the drawer's slide and its travel; fingers never close on
+nothing the action names; after every action the scene's abstraction Ψ is the
+state the symbolic plan predicts; at the end Ψ entails the goal.
+
+What the judge derived is kept for the physics judge and for pictures: per step
+the replayed tracks (per state what the hand holds, every drawer's opening) and
+the scene after the step (``StepOutcome``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 
@@ -35,6 +42,28 @@ from kitchen_tamp.kitchen import (
 )
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import GroundAction, Task
+from kitchen_tamp.world import Pose
+
+
+@dataclass(frozen=True, eq=False)
+class StepOutcome:
+    """One step as the judge read it: the action's arguments, and the scene after the step --
+    every box's pose (the held one in the hand), the box in the hand, every drawer's opening."""
+
+    arguments: tuple[str, ...]
+    box_poses: Mapping[str, Pose]
+    held_box: str | None
+    openings: Mapping[str, float]
+
+
+def step_outcome(kitchen: KitchenScene, arguments: tuple[str, ...]) -> StepOutcome:
+    """The scene as it is now, as a ``StepOutcome`` of an action with ``arguments``."""
+    return StepOutcome(
+        arguments,
+        MappingProxyType({name: body.base_pose() for name, body in kitchen.boxes.items()}),
+        kitchen.held_box(),
+        MappingProxyType({name: kitchen.opening(name) for name in kitchen.map.openables}),
+    )
 
 
 @dataclass
@@ -54,6 +83,7 @@ class Verification:
     final_atoms: list[str] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)
     tracks: list[tuple[SegmentTrack, ...]] = field(default_factory=list)
+    outcomes: list[StepOutcome] = field(default_factory=list)
 
     @property
     def goal_reached(self) -> bool:
@@ -75,7 +105,7 @@ class Verification:
         return {
             "verified": self.verified,
             "collision_free": self.collision_free,
-            "min_clearance_m": round(self.min_clearance_m, 6),
+            "min_clearance_m": round(self.min_clearance_m, 6) if np.isfinite(self.min_clearance_m) else None,
             "closest_approach": self.closest_approach,
             "contact_penetration_bound_m": CONTACT_PENETRATION_BOUND,
             "goal_atoms": dict(self.goal_atoms),
@@ -97,7 +127,6 @@ def parse_action(task: Task, text: str) -> GroundAction | None:
     """The task's ground action written as ``(name arg ...)``, or None."""
     words = _words(text)
     return task.action_named(words[0], words[1:]) if words else None
-
 
 
 def verify_trajectory(
@@ -130,9 +159,10 @@ def verify_trajectory(
             result.problems.append(f"{label}: not applicable in the planned state")
         else:
             state = action.apply(state)
-        args = action.args if action is not None else tuple(_words(step.action)[1:])
+        args = tuple(action.args) if action is not None else tuple(_words(step.action)[1:])
         replay = replay_action(kitchen, label, args, step.segments, resolution, measure=True)
         result.tracks.append(tuple(replay.tracks))
+        result.outcomes.append(step_outcome(kitchen, tuple(args)))
         result.problems += replay.problems
         result.configurations_checked += replay.configurations_checked
         result.collision_free &= replay.collision_free

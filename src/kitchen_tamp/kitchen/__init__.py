@@ -11,7 +11,7 @@ or a ``SkillFailure`` saying why and which objects obstruct).
 """
 
 from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_initial_state
-from kitchen_tamp.kitchen.action_replay import ActionReplay, SegmentTrack, first_problem, replay_action
+from kitchen_tamp.kitchen.action_replay import ActionReplay, first_problem, replay_action
 from kitchen_tamp.kitchen.binding import ActionBinding, DomainBinding
 from kitchen_tamp.kitchen.binding_reader import read_binding
 from kitchen_tamp.kitchen.conditions import apply_condition_effects
@@ -26,6 +26,7 @@ from kitchen_tamp.kitchen.errors import (
     UnknownObjectError,
     UnsupportedInitialStateError,
 )
+from kitchen_tamp.kitchen.replay_track import Carried, SegmentTrack
 from kitchen_tamp.kitchen.scene.kitchen_map import KitchenMap, default_kitchen_map, load_kitchen_map
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.scene.layout import build_kitchen, build_kitchen_for_task, load_kitchen_problem
@@ -46,6 +47,7 @@ __all__ = [
     "ActionBinding",
     "ActionReplay",
     "BindingFileError",
+    "Carried",
     "DomainBinding",
     "FailureKind",
     "Grasp",

@@ -1,16 +1,22 @@
 """One action replayed as the judge sees it: what rides with the hand, where the drawer is,
-and whether any state along the way collides -- all derived from the action, the kitchen
-and the geometry, never from what a planner claims.
+what stands on what, and whether any state along the way collides -- all derived from the
+action, the kitchen and the geometry, never from what a planner claims.
 
-Along every segment, at states ``resolution`` rad apart (``kitchen_tamp.joint_spacing``):
+First every waypoint of a segment is checked against what the robot can do
+(``kitchen_tamp.kitchen.robot_range``: the joints' ranges, the hand's opening).
+Then, along the segment, at states ``resolution`` rad apart
+(``kitchen_tamp.joint_spacing``):
 
 - **attachment**: a box the action names rides with the hand from the state
   where the closing fingers hold it (``contact_policy.fingers_holding``) until
-  the fingers open wider than they held it; released, it stays where it is (in
-  the drawer, it rides with the drawer);
-- **the drawer** the action names moves only while the closed fingers hold its
-  handle, by as much as the hand moves along the drawer's axis (clamped to the
-  joint's travel), and stops when they open;
+  the fingers open any wider than they held it, however little or slowly;
+- **support**: whenever a box is let go of or taken, every loose box must stand
+  on a region (``contact_policy.support_of``), or it would fall: the state is
+  refused (in the drawer, a box rides with the drawer);
+- **the drawer** the action names moves only while the fingers hold its
+  handle, by as much as the hand moves along the drawer's axis; a hand that
+  pulls it past its stop, or moves across the axis or turns while holding the
+  handle, is refused;
 - **collisions**: every pair of ``kitchen_tamp.world.checked_pairs`` with the
   action's intended contacts (``contact_policy.intended_contacts``) allowed to
   ``CONTACT_PENETRATION_BOUND``; while the drawer moves, the boxes in it are
@@ -27,76 +33,29 @@ judge accepts.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Final
 
 import numpy as np
 
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
-from kitchen_tamp.kitchen.contact_policy import finger_distance, fingers_holding, intended_contacts
+from kitchen_tamp.kitchen.contact_policy import (
+    CONTACT_PENETRATION_BOUND,
+    finger_distance,
+    fingers_holding,
+    intended_contacts,
+    support_of,
+)
+from kitchen_tamp.kitchen.replay_track import Carried, Gripped, SegmentTrack
+from kitchen_tamp.kitchen.robot_range import clipped_to_range, range_problem
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples, interpolate_segment
-from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
+from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
 
-OPEN_TOLERANCE: Final = 1e-6
-"""The fingers let go when they are this much (m) wider than when they took hold."""
-
-
-@dataclass(frozen=True)
-class Carried:
-    """A box riding with the hand at ``hand_from_box``, taken with the fingers ``width`` apart."""
-
-    box: str
-    hand_from_box: Pose
-    width: float
-
-
-@dataclass(frozen=True)
-class Gripped:
-    """A drawer held by its handle since the hand was at ``hand_start`` and it at ``opening_start``."""
-
-    drawer: str
-    width: float
-    hand_start: FloatArray
-    opening_start: float
-    axis: FloatArray
-
-
-@dataclass(frozen=True, eq=False)
-class SegmentTrack:
-    """One segment as replayed: its states and, per state, the box riding with the hand and
-    every drawer's opening."""
-
-    segment: Segment
-    samples: SegmentSamples
-    carried: tuple[Carried | None, ...]
-    openings: Mapping[str, FloatArray]
-
-    def __len__(self) -> int:
-        return len(self.samples)
-
-    def pose(self, kitchen: KitchenScene, index: int) -> None:
-        """Put ``kitchen`` (replayed up to the state before) in state ``index``."""
-        for drawer, values in self.openings.items():
-            if kitchen.opening(drawer) != float(values[index]):
-                kitchen.set_opening(drawer, float(values[index]))
-        kitchen.robot.set_gripper_width(float(self.samples.gripper_widths[index]))
-        kitchen.robot.set_configuration(self.samples.configurations[index])
-        wanted, held = self.carried[index], kitchen.held_box()
-        if held is not None and (wanted is None or wanted.box != held):
-            kitchen.release(held)
-        if wanted is not None and held != wanted.box:
-            take(kitchen, wanted)
-
-
-def take(kitchen: KitchenScene, carried: Carried) -> None:
-    """Make ``carried.box`` ride with the hand at its pose relative to the hand."""
-    body = kitchen.box(carried.box)
-    kitchen.scene.detach(body)
-    world_from_hand = kitchen.robot.body.link_pose(kitchen.robot.description.hand_link)
-    kitchen.scene.set_base_pose(body, world_from_hand @ carried.hand_from_box)
-    kitchen.grasp(carried.box)
+HANDLE_HOLD_ANGLE: Final = 0.02
+"""Largest turn (rad) of the hand while it holds a handle: about the contact bound over the
+fingers' pads (2 mm over 10 cm); the handle is a rigid bar on a straight slide."""
 
 
 def pull_direction(kitchen: KitchenScene, drawer: str) -> FloatArray:
@@ -134,10 +93,6 @@ def _carried_now(kitchen: KitchenScene) -> Carried | None:
     return Carried(held, attachment.parent_link_from_child, kitchen.robot.gripper_width())
 
 
-def _hand_position(kitchen: KitchenScene) -> FloatArray:
-    return np.asarray(kitchen.robot.body.link_pose(kitchen.robot.description.hand_link).translation)
-
-
 @dataclass
 class _Run:
     """Consecutive states checked with one checker (same fingers, load and drawer hold)."""
@@ -163,82 +118,147 @@ class _Replayer:
         self.contacts = intended_contacts(kitchen, args)
         self.carried = _carried_now(kitchen)
         self.gripped: Gripped | None = None
+        self.where = label
+        self.waypoint = 0
         self._took = False
+        self._grip_faulted = False
         self.result = ActionReplay()
 
-    def _take_hold(self) -> bool:
+    def problem(self, text: str) -> None:
+        self.result.problems.append(f"{self.where}: {text}")
+
+    # -- what the fingers do ---------------------------------------------------------------------
+    def _take_hold(self, width: float) -> bool:
         kitchen = self.kitchen
         held = fingers_holding(kitchen, self.boxes, self.drawers)
         if held is None:
             return False
-        width = kitchen.robot.gripper_width()
         if held.kind == "box":
             kitchen.scene.detach(kitchen.box(held.name))
             kitchen.grasp(held.name)
-            self.carried = _carried_now(kitchen)
+            carried = _carried_now(kitchen)
+            assert carried is not None
+            self.carried = Carried(carried.box, carried.hand_from_box, width)
+            self._check_support()
         else:
             self.gripped = Gripped(
-                held.name,
-                width,
-                _hand_position(kitchen),
-                kitchen.opening(held.name),
+                held.name, width, kitchen.robot.tool_pose(), kitchen.opening(held.name),
                 pull_direction(kitchen, held.name),
             )
+            self._grip_faulted = False
         return True
 
-    def _closed_on_nothing(self, where: str) -> None:
+    def _closed_on_nothing(self) -> None:
         named = " or ".join([*self.boxes, *(f"the handle of {d}" for d in self.drawers)]) or "anything"
         nearest = [(finger_distance(self.kitchen, b), b) for b in self.boxes]
         hint = ""
         if nearest:
             distance, box = min(nearest)
             hint = f" ({box} is {distance * 1000:.0f} mm from the nearer finger)"
-        self.result.problems.append(f"{where}: the fingers closed without holding {named}{hint}")
+        self.problem(f"the fingers closed without holding {named}{hint}")
 
+    def _check_support(self) -> None:
+        """Every loose box stands on something (called where a box is let go of or taken)."""
+        held = self.kitchen.held_box()
+        for box in self.kitchen.boxes:
+            if box != held and support_of(self.kitchen, box) is None:
+                self.problem(f"{box} stands on nothing after waypoint {self.waypoint}: it would fall")
+
+    def _advance(self, width: float, previous_width: float) -> None:
+        """The events at a state the scene is posed in: the drawer follows a gripping hand,
+        fingers opening past their grip let go, closing fingers take hold of what they hold."""
+        self._took = False
+        if self.gripped is not None:
+            self._drag(self.gripped)
+            if width < self.gripped.width:
+                self.gripped = replace(self.gripped, width=width)
+        if self.carried is not None and width < self.carried.width:
+            self.carried = replace(self.carried, width=width)  # the grasp width is the narrowest
+        if self.carried is not None and width > self.carried.width:
+            self.kitchen.release(self.carried.box)
+            self.carried = None
+            self._check_support()
+        if self.gripped is not None and width > self.gripped.width:
+            self.gripped = None
+        if width < previous_width and self.carried is None and self.gripped is None:
+            self._took = self._take_hold(width)
+
+    def _drag(self, gripped: Gripped) -> None:
+        kitchen = self.kitchen
+        world_from_tool = kitchen.robot.tool_pose()
+        moved = world_from_tool.translation - gripped.world_from_tool.translation
+        along = float(np.dot(moved, gripped.axis))
+        across = float(np.linalg.norm(moved - along * gripped.axis))
+        turned = gripped.world_from_tool.distance_to(world_from_tool)[1]
+        lower, upper = kitchen.opening_limits(gripped.drawer)
+        wanted = gripped.opening_start + along
+        past = max(lower - wanted, wanted - upper)
+        if not self._grip_faulted and past > CONTACT_PENETRATION_BOUND:
+            self._grip_faulted = True
+            self.problem(f"after waypoint {self.waypoint} the hand holding the handle of {gripped.drawer} "
+                         f"pulls it {past * 100:.1f} cm past its stop")
+        elif not self._grip_faulted and (across > CONTACT_PENETRATION_BOUND or turned > HANDLE_HOLD_ANGLE):
+            self._grip_faulted = True
+            self.problem(f"after waypoint {self.waypoint} the hand holding the handle of {gripped.drawer} "
+                         f"moves {across * 1000:.1f} mm across the drawer's slide and turns "
+                         f"{np.degrees(turned):.1f} deg (the handle cannot follow)")
+        kitchen.set_opening(gripped.drawer, float(np.clip(wanted, lower, upper)))
+
+    # -- one segment -------------------------------------------------------------------------------
     def segment(self, segment: Segment) -> None:
-        kitchen, robot = self.kitchen, self.kitchen.robot
-        where = f"{self.label} {segment.name}"
-        samples = interpolate_segment(segment, self.resolution)
-        self.result.configurations_checked += len(samples)
-        outside = ~np.all(
-            (samples.configurations >= robot.lower - 1e-9) & (samples.configurations <= robot.upper + 1e-9),
-            axis=1,
-        )
-        if outside.any():
+        robot = self.kitchen.robot
+        self.where = f"{self.label} {segment.name}"
+        out_of_range = range_problem(robot, segment)
+        if out_of_range is not None:
             self.result.within_joint_limits = False
-            self.result.problems.append(
-                f"{where}: outside the joint limits at state {int(np.argmax(outside))}"
-            )
+            self.problem(out_of_range)
             if not self.measure:
                 return
+            segment = clipped_to_range(robot, segment)
+        samples = interpolate_segment(segment, self.resolution)
+        self.result.configurations_checked += len(samples)
+        track, runs = self._walk(segment, samples)
+        self.result.tracks.append(track)
+        for run in runs:
+            if (not self._check(samples, track.openings, run) or self.result.problems) and not self.measure:
+                return
+
+    def _walk(self, segment: Segment, samples: SegmentSamples) -> tuple[SegmentTrack, list[_Run]]:
+        """Pose the scene along the segment's states where anything may happen, recording what
+        the judge derives per state and the runs of states one checker covers."""
+        kitchen, robot = self.kitchen, self.kitchen.robot
         drawers = list(kitchen.map.openables)
         openings = {d: np.empty(len(samples)) for d in drawers}
         carried: list[Carried | None] = []
+        gripped: list[str | None] = []
         runs: list[_Run] = []
-        previous_width = robot.gripper_width()
+        posed_width = previous_width = robot.gripper_width()
         closing = took = False
         key: tuple[float, int, str | None] | None = None
         for i in range(len(samples)):
             width = float(samples.gripper_widths[i])
+            self.waypoint = int(samples.waypoint_of[i])
             # Nothing can change while the fingers keep their width and hold no handle: the
             # scene is posed only where something may happen (and at the segment's end).
-            quiet = i > 0 and abs(width - previous_width) <= OPEN_TOLERANCE and self.gripped is None
+            quiet = i > 0 and width == posed_width and self.gripped is None
             if not quiet:
                 robot.set_gripper_width(width)
                 robot.set_configuration(samples.configurations[i])
-                self._advance(width, previous_width)
-            if closing and width >= previous_width - OPEN_TOLERANCE:
+                self._advance(width, posed_width)
+                posed_width = width
+            if closing and width >= previous_width:
                 if not took:
-                    self._closed_on_nothing(where)
+                    self._closed_on_nothing()
                 closing = took = False
-            if width < previous_width - OPEN_TOLERANCE:
+            if width < previous_width:
                 closing = True
                 took = took or self._took
             previous_width = width
             carried.append(self.carried)
+            gripped.append(None if self.gripped is None else self.gripped.drawer)
             for drawer in drawers:
                 openings[drawer][i] = openings[drawer][i - 1] if quiet else kitchen.opening(drawer)
-            state = (width, id(self.carried), None if self.gripped is None else self.gripped.drawer)
+            state = (width, id(self.carried), gripped[-1])
             if not quiet and state != key:
                 if runs:
                     runs[-1].end = i
@@ -247,39 +267,14 @@ class _Replayer:
         robot.set_gripper_width(float(samples.gripper_widths[-1]))
         robot.set_configuration(samples.configurations[-1])
         if closing and not took:
-            self._closed_on_nothing(where)
+            self._closed_on_nothing()
         runs[-1].end = len(samples)
         for values in openings.values():
             values.flags.writeable = False
-        self.result.tracks.append(SegmentTrack(segment, samples, tuple(carried), MappingProxyType(openings)))
-        for run in runs:
-            if not self._check(where, samples, openings, run) and not self.measure:
-                return
+        track = SegmentTrack(segment, samples, tuple(carried), tuple(gripped), MappingProxyType(openings))
+        return track, runs
 
-    def _advance(self, width: float, previous_width: float) -> None:
-        """The events at a state the scene is posed in: the drawer follows a gripping hand,
-        opening fingers let go, closing fingers take hold of what they hold (``_took``)."""
-        kitchen = self.kitchen
-        self._took = False
-        if self.gripped is not None:
-            self._drag(self.gripped)
-        if self.carried is not None and width > self.carried.width + OPEN_TOLERANCE:
-            kitchen.release(self.carried.box)
-            self.carried = None
-        if self.gripped is not None and width > self.gripped.width + OPEN_TOLERANCE:
-            self.gripped = None
-        if width < previous_width - OPEN_TOLERANCE and self.carried is None and self.gripped is None:
-            self._took = self._take_hold()
-
-    def _drag(self, gripped: Gripped) -> None:
-        kitchen = self.kitchen
-        moved = float(np.dot(_hand_position(kitchen) - gripped.hand_start, gripped.axis))
-        lower, upper = kitchen.opening_limits(gripped.drawer)
-        kitchen.set_opening(gripped.drawer, float(np.clip(gripped.opening_start + moved, lower, upper)))
-
-    def _check(
-        self, where: str, samples: SegmentSamples, openings: Mapping[str, FloatArray], run: _Run
-    ) -> bool:
+    def _check(self, samples: SegmentSamples, openings: Mapping[str, FloatArray], run: _Run) -> bool:
         """Check one run's states; record the closest approach and any collision."""
         rows = slice(run.start, run.end)
         qs = samples.configurations[rows]
@@ -295,7 +290,7 @@ class _Replayer:
             lowest = int(np.argmin(clearances))
             if clearances[lowest] < self.result.min_clearance_m:
                 self.result.min_clearance_m = float(clearances[lowest])
-                self.result.closest_approach = where
+                self.result.closest_approach = self.where
             bad = clearances < 0.0
             depth = f" ({float(clearances[lowest]) * 1000:.1f} mm deep)"
         else:
@@ -309,9 +304,7 @@ class _Replayer:
         pairs = ", ".join(f"{a}/{b}" for a, b in run.checker.colliding_pairs(qs[first], at))
         self.result.collision_free = False
         waypoint = int(samples.waypoint_of[run.start + first])
-        self.result.problems.append(
-            f"{where}: collision after waypoint {waypoint}{depth}{': ' + pairs if pairs else ''}"
-        )
+        self.problem(f"collision after waypoint {waypoint}{depth}{': ' + pairs if pairs else ''}")
         return False
 
 

@@ -1,4 +1,5 @@
-"""Which contacts an action means, what the fingers hold, and whether a layout overlaps.
+"""Which contacts an action means, what the fingers hold, what a loose box stands on, and
+whether a layout overlaps.
 
 An action may touch only its own objects, and only down to
 ``CONTACT_PENETRATION_BOUND``: the fingers on a box it names, a box it names
@@ -9,6 +10,11 @@ gripper on that drawer's handle. Every other contact is a collision.
 The fingers hold an object when both touch it (within ``TOUCH_DISTANCE``) from
 opposite sides: what each finger touches lies between the two fingers, the
 left finger's point left of the right finger's.
+
+A loose box is supported when it rests on something as Ψ means it (a surface, a
+region, a drawer's floor, another box's top face: centre over its face, lowest
+corner on it) and stands upright (tilted at most ``SUPPORT_TILT_DEG``); a box
+that is not supported falls.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from typing import Final
 
 import numpy as np
 
+from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.errors import UnsupportedInitialStateError
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.world import BASE_LINK, AllowedContact, Body
@@ -27,16 +34,20 @@ from kitchen_tamp.world.contacts import closest_points, overlapping_links
 
 __all__ = [
     "CONTACT_PENETRATION_BOUND",
+    "SUPPORT_TILT_DEG",
     "TOUCH_DISTANCE",
     "HeldObject",
     "check_initial_overlaps",
     "finger_distance",
     "fingers_holding",
     "intended_contacts",
+    "support_of",
 ]
 
 TOUCH_DISTANCE: Final = 0.001
 """A finger touches an object when their shapes are at most this far apart (m)."""
+SUPPORT_TILT_DEG: Final = 5.0
+"""A box stands on a region when its axis nearest the vertical is at most this far from it."""
 
 
 def _support_links(kitchen: KitchenScene, support: str) -> tuple[str, ...]:
@@ -118,6 +129,17 @@ def finger_distance(kitchen: KitchenScene, box: str) -> float:
         )
     ]
     return min(distances, default=float("inf"))
+
+
+def support_of(kitchen: KitchenScene, box: str) -> str | None:
+    """What ``box`` stands on now -- a surface, a region, a drawer's floor or another box, as Ψ
+    finds it (``abstraction.supports_of``) -- provided it stands upright; else None."""
+    rotation = kitchen.box(box).base_pose().rotation
+    upright = float(np.max(np.abs(rotation[2, :])))
+    if upright < np.cos(np.radians(SUPPORT_TILT_DEG)):
+        return None
+    supports = supports_of(kitchen, box)
+    return supports[0][1] if supports else None
 
 
 def check_initial_overlaps(kitchen: KitchenScene) -> None:

@@ -52,8 +52,9 @@ class PhysicsSettings:
     """Force bound (N) of each finger's motor: the grip force once the fingers are stopped by
     what they hold (the Panda URDF's finger effort)."""
     grip_squeeze: float = 0.01
-    """How much narrower (m) than the planned width the fingers are commanded to close, so
-    that they press with ``grip_force`` instead of resting on the object."""
+    """How much narrower (m) than the planned width the fingers are commanded while they hold
+    something, so that they press with ``grip_force`` instead of resting on it; while they
+    hold nothing they are commanded the planned width itself."""
     finger_coupling_force: float = 50.0
     """Force bound (N) of the gear that makes the fingers move together (0: no gear)."""
     finger_contact_stiffness: float = 1e6
@@ -78,6 +79,19 @@ class PhysicsSettings:
 
 
 DEFAULT_PHYSICS = PhysicsSettings()
+
+
+@dataclass(frozen=True)
+class RobotContact:
+    """A contact point between one of the robot's links and a link of another body."""
+
+    robot_link: str
+    body: str
+    link: str
+    distance: float
+    """Signed distance (m): negative when the shapes interpenetrate."""
+    normal_force: float
+    """Newtons."""
 
 
 class PhysicsWorld:
@@ -202,14 +216,11 @@ class PhysicsWorld:
             physicsClientId=self.client,
         )
 
-    def command_gripper(self, planned_width: float) -> None:
-        """Open fully when ``planned_width`` is the full opening; otherwise close to
-        ``grip_squeeze`` narrower than planned, pressing with at most ``grip_force``."""
-        full = self.robot.max_gripper_width
-        if planned_width >= full - 1e-4:
-            target = full
-        else:
-            target = max(0.0, planned_width - self.settings.grip_squeeze)
+    def command_gripper(self, planned_width: float, press: bool = False) -> None:
+        """Fingers to ``planned_width`` apart, each finger's force bounded by ``grip_force``; with
+        ``press`` (they hold something), ``grip_squeeze`` narrower, so that they press on it."""
+        target = planned_width - self.settings.grip_squeeze if press else planned_width
+        target = float(np.clip(target, 0.0, self.robot.max_gripper_width))
         count = len(self._finger_indices)
         p.setJointMotorControlArray(
             self.robot.body.uid,
@@ -246,6 +257,23 @@ class PhysicsWorld:
         """Names of ``other``'s links in contact with ``body`` after the last step."""
         contacts = p.getContactPoints(bodyA=body.uid, bodyB=other.uid, physicsClientId=self.client)
         return frozenset(other.link_name(c[4]) for c in contacts)
+
+    def robot_contacts(self) -> list[RobotContact]:
+        """Every contact point of the robot with another body after the last step."""
+        robot = self.robot.body
+        names = {body.uid: body for body in self.scene.bodies}
+        found = []
+        for contact in p.getContactPoints(bodyA=robot.uid, physicsClientId=self.client):
+            other = names.get(contact[2])
+            if other is None or other is robot:
+                continue
+            found.append(
+                RobotContact(
+                    robot.link_name(contact[3]), other.name, other.link_name(contact[4]),
+                    float(contact[8]), float(contact[9]),
+                )
+            )
+        return found
 
     def holds(self, body: Body) -> bool:
         """Whether every finger of the robot touches ``body``."""

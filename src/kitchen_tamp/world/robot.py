@@ -1,9 +1,17 @@
-"""An arm with a parallel gripper: joints, limits, gripper width and forward kinematics by name."""
+"""An arm with a parallel gripper: joints, limits, gripper width and forward kinematics by name.
+
+An arm joint's range is the stricter of its URDF ``<limit>`` and its
+``<safety_controller>`` soft limits (for the Panda of ``pybullet_data``: the
+datasheet's limits, 0.0698 rad -- 4 degrees -- inside its ``<limit>`` on every joint),
+so planners, IK and the judge all keep to what the robot may do, not to where it stops.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import xml.etree.ElementTree as ElementTree
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -31,16 +39,49 @@ PANDA = ArmDescription(
 )
 
 
+def safety_limits(urdf: Path) -> dict[str, tuple[float, float]]:
+    """Joint name -> (soft lower, soft upper) of every joint with a ``<safety_controller>`` that
+    states both (empty when the file cannot be read: PyBullet loaded it, so that is rare)."""
+    try:
+        root = ElementTree.parse(urdf).getroot()
+    except (OSError, ElementTree.ParseError):
+        return {}
+    limits = {}
+    for joint in root.iter("joint"):
+        safety = joint.find("safety_controller")
+        if safety is None or joint.get("name") is None:
+            continue
+        lower, upper = safety.get("soft_lower_limit"), safety.get("soft_upper_limit")
+        if lower is not None and upper is not None:
+            limits[str(joint.get("name"))] = (float(lower), float(upper))
+    return limits
+
+
+def _stricter(
+    urdf: tuple[float, float], safety: Mapping[str, tuple[float, float]], name: str
+) -> tuple[float, float]:
+    soft = safety.get(name, urdf)
+    return max(urdf[0], soft[0]), min(urdf[1], soft[1])
+
+
 class Robot:
-    """An arm body in a scene; changes go through the scene so attached boxes follow."""
+    """An arm body in a scene; changes go through the scene so attached boxes follow.
+
+    ``lower`` and ``upper`` are the arm joints' ranges: the stricter of the URDF's
+    ``<limit>`` (``urdf_lower``, ``urdf_upper``) and its ``<safety_controller>``."""
 
     def __init__(self, scene: Scene, body: Body, description: ArmDescription) -> None:
         self.scene = scene
         self.body = body
         self.description = description
         joints = [body.joint(n) for n in description.arm_joints]
-        self.lower: FloatArray = np.array([j.lower for j in joints])
-        self.upper: FloatArray = np.array([j.upper for j in joints])
+        self.urdf_lower: FloatArray = np.array([j.lower for j in joints])
+        self.urdf_upper: FloatArray = np.array([j.upper for j in joints])
+        urdf = scene.urdf_paths.get(body.name)
+        safety = safety_limits(urdf) if urdf is not None else {}
+        ranges = [_stricter((j.lower, j.upper), safety, j.name) for j in joints]
+        self.lower: FloatArray = np.array([low for low, _ in ranges])
+        self.upper: FloatArray = np.array([high for _, high in ranges])
         fingers = [body.joint(n) for n in description.finger_joints]
         self.max_gripper_width: float = float(sum(f.upper for f in fingers))
         self.gripper_links: frozenset[str] = frozenset(

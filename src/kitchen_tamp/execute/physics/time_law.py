@@ -38,12 +38,14 @@ DEFAULT_TIME_LAW = TimeLaw()
 @dataclass(frozen=True, eq=False)
 class Stroke:
     """Waypoints (configurations, widths) run in one go from rest to rest; ``lengths[i]`` is the
-    time interval i takes at top speed."""
+    time interval i takes at top speed; the stroke's first waypoint is waypoint ``first`` of
+    its segment."""
 
     configurations: FloatArray
     widths: FloatArray
     lengths: FloatArray
     ramp_s: float
+    first: int = 0
 
     @property
     def duration(self) -> float:
@@ -68,8 +70,9 @@ class Stroke:
         speed = np.where(t < ramp, acceleration * t, np.where(left < ramp, acceleration * left, peak))
         return distance, speed
 
-    def sample(self, times: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """(configurations, joint velocities, gripper widths) at each of ``times``."""
+    def locate(self, times: FloatArray) -> tuple[np.ndarray, FloatArray, FloatArray]:
+        """(waypoint interval of the stroke, fraction along it, speed in top-speed units) at
+        each of ``times``."""
         distance, speed = self.progress(times)
         ends = np.cumsum(self.lengths)
         starts = ends - self.lengths
@@ -78,11 +81,15 @@ class Stroke:
         moving = lengths > 0.0
         safe = np.where(moving, lengths, 1.0)
         fraction = np.where(moving, np.clip((distance - starts[i]) / safe, 0.0, 1.0), 0.0)
+        return i, fraction, np.where(moving, speed / safe, 0.0)
+
+    def sample(self, times: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(configurations, joint velocities, gripper widths) at each of ``times``."""
+        i, fraction, rate = self.locate(times)
         dq = self.configurations[i + 1] - self.configurations[i]
         q = self.configurations[i] + fraction[:, None] * dq
         widths = self.widths[i] + fraction * (self.widths[i + 1] - self.widths[i])
-        qd = dq * np.where(moving, speed / safe, 0.0)[:, None]
-        return q, qd, widths
+        return q, dq * rate[:, None], widths
 
 
 def strokes(
@@ -107,7 +114,7 @@ def strokes(
                 cuts.append(i)
     cuts.append(len(dq))
     return [
-        Stroke(configurations[a : b + 1], widths[a : b + 1], lengths[a:b], law.ramp_s)
+        Stroke(configurations[a : b + 1], widths[a : b + 1], lengths[a:b], law.ramp_s, a)
         for a, b in itertools.pairwise(cuts)
         if b > a
     ]

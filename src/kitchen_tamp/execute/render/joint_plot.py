@@ -42,7 +42,11 @@ def plot_joints(timeline: Timeline, title: str, path: Path, show_velocities: boo
             float(start), top, " " + action, rotation=90, va="top", ha="left", fontsize=7, color="0.3"
         )
     axes[-1][0].set_xlabel("time (s) at nominal joint speed")
-    angle_axis.legend(loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=7)
+    if len(times):
+        angle_axis.legend(loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=7)
+    else:
+        angle_axis.text(0.5, 0.5, "no motion: the plan has no actions", ha="center",
+                        transform=angle_axis.transAxes)
     figure.tight_layout()
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=100)

@@ -36,8 +36,11 @@ def render_replay(
     height: int = 300,
     on_frame: Callable[[int, int], None] | None = None,
 ) -> list[Image]:
-    """Pictures of ``kitchen`` (built fresh for the problem) along ``timeline``."""
+    """Pictures of ``kitchen`` (built fresh for the problem) along ``timeline``; one picture of
+    the scene as it is for a timeline without motion (a plan of no actions)."""
     view = overview_camera(kitchen, width, height)
+    if not timeline.segments:
+        return [render(kitchen.scene, view)]
     times = frame_times(timeline)
     images = []
     for number, _ in enumerate(timeline.play(kitchen, times)):

@@ -39,15 +39,30 @@ from kitchen_tamp.kitchen.scene.spec import (
 __all__ = ["SceneFileError", "parse_scene", "read_scene"]
 
 NAME_PATTERN: Final = re.compile(r"[A-Za-z][A-Za-z0-9_\-]*")
+SCHEMA_KEYS: Final = {
+    "": ("name", "robot", "counter", "surfaces", "drawers", "boxes", "regions", "obstacles"),
+    "robot": ("model", "mount"),
+    "mount": ("size", "height", "colour"),
+    "counter": ("front", "depth", "width", "height", "slab", "panel", "colour", "slab_colour"),
+    "surfaces": ("name", "extent", "height", "colour", "burners"),
+    "drawers": ("name", "handle", "size", "y", "travel", "wall", "gap", "colour"),
+    "handle": ("bar", "standoff", "post"),
+    "boxes": ("name", "size", "mass", "friction", "colour", "at", "yaw"),
+    "regions": ("name", "surface", "extent", "kind", "thickness", "colour"),
+    "obstacles": ("name", "extent", "height", "colour"),
+}
+"""The keys each kind of table may hold: a missing key's hint proposes only a present key that is
+none of them (a misspelling), never another key of the schema."""
 
 
 class _Table:
     """One TOML table with the key path that leads to it, for error messages."""
 
-    def __init__(self, path: Path, where: str, data: object) -> None:
+    def __init__(self, path: Path, where: str, data: object, kind: str = "") -> None:
         if not isinstance(data, dict):
             raise SceneFileError(path, where, f"expected a table, got {type(data).__name__}")
         self.path = path
+        self.kind = kind
         self.where = where
         self.data: dict[str, Any] = data
         self.used: set[str] = set()
@@ -62,14 +77,15 @@ class _Table:
         self.used.add(name)
         if name not in self.data:
             if default is None:
-                close = difflib.get_close_matches(name, [k for k in self.data if k not in self.used], 1)
+                known = set(SCHEMA_KEYS.get(self.kind, ())) | self.used
+                close = difflib.get_close_matches(name, [k for k in self.data if k not in known], 1)
                 hint = f" (is {close[0]!r} a misspelling?)" if close else ""
                 raise SceneFileError(self.path, self.where or name, f"missing key {name!r}{hint}")
             return default
         return self.data[name]
 
     def table(self, name: str) -> _Table:
-        return _Table(self.path, self.key(name), self.raw(name))
+        return _Table(self.path, self.key(name), self.raw(name), name)
 
     def text(self, name: str, default: str | None = None) -> str:
         value = self.raw(name, default)
@@ -123,7 +139,7 @@ class _Table:
         self.used.add(name)
         if not isinstance(value, list):
             raise self.error(name, "expected an array of tables ([[" + name + "]])")
-        return [_Table(self.path, f"{self.key(name)}[{i}]", item) for i, item in enumerate(value)]
+        return [_Table(self.path, f"{self.key(name)}[{i}]", item, name) for i, item in enumerate(value)]
 
     def named(self) -> str:
         """Read this table's ``name`` and use it in later key paths."""

@@ -1,0 +1,221 @@
+"""What ``final_project.py`` does with a trajectory once it has one: both judges, the pictures,
+the report and the verdict line -- the same for a planning run and for ``replay``.
+
+The kinematic judge replays the file in a fresh kitchen; physics executes the file as
+the kinematic judge read it. Neither plans. In a planning run (``RunContext.replan``
+set), a scene that drifts under physics has the rest of the plan refined again from the
+simulated scene; those steps are written into ``trajectory.json`` and the file is judged
+again from the start, so the file holds exactly what was judged, and ``replay`` of it
+gives the same verdict (at most ``MAX_REPLANS`` times).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Final
+
+import numpy as np
+
+from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.execute import (
+    FRAME_SECONDS,
+    REPORT_FILE,
+    RunReport,
+    SavedRun,
+    Timeline,
+    Verification,
+    build_timeline,
+    judge_under_physics,
+    plot_joints,
+    render_replay,
+    verify_trajectory,
+    write_gif,
+    write_trajectory,
+)
+from kitchen_tamp.execute.physics.replanning import Replanner
+from kitchen_tamp.execute.physics.verdict import PhysicsExecution
+from kitchen_tamp.execute.render.browser_replay import (
+    HTML_FILE,
+    LiveViewer,
+    RolloutRecorder,
+    write_timeline_replay,
+)
+from kitchen_tamp.execute.run_inputs import RunInputs
+from kitchen_tamp.execute.trajectory_file import check_joint_count
+from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_task
+from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.planning import Task
+
+GIF_FILE = "replay.gif"
+JOINTS_FILE = "joints.png"
+MAX_REPLANS: Final = 2
+"""Re-plans under physics a planning run may make before its verdict stands."""
+
+
+def say(text: str) -> None:
+    print(text, flush=True)
+
+
+@dataclass(frozen=True)
+class ViewingOptions:
+    """What to show and what to skip (from the command line)."""
+
+    gui: bool = False
+    step: bool = False
+    meshcat: bool = False
+    video: bool = True
+    physics: bool = True
+
+
+@dataclass
+class RunContext:
+    """A run to judge and picture: the task and its kitchen, the saved run, where its outputs
+    go, and (in a planning run) how to re-plan under physics and where the file lives."""
+
+    task: Task
+    kitchen_map: KitchenMap
+    run: SavedRun
+    trajectory_file: Path
+    """The file the run is read from (a planning run writes its re-plans there)."""
+    out_dir: Path
+    report: RunReport
+    inputs: RunInputs
+    viewing: ViewingOptions
+    report_name: str = REPORT_FILE
+    live: LiveViewer | None = None
+    replan: Replanner | None = None
+    """How a planning run re-plans under physics (None in a replay: it never re-plans)."""
+    replans: list[dict[str, object]] = field(default_factory=list)
+
+
+def start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
+    live = LiveViewer(kitchen)
+    say(f"live viewer (Meshcat) at {live.url} while this program runs")
+    return live
+
+
+def wait_for_enter(index: int, action: str) -> None:
+    input(f"step {index + 1}: {action}  (press Enter)")
+
+
+def _play_in_window(kitchen: KitchenScene, timeline: Timeline, step: bool) -> None:
+    """Play the run at nominal speed in the GUI scene (waiting for Enter per action if asked)."""
+    times = np.arange(0.0, timeline.duration, 1.0 / 30.0)
+    current = -1
+    for _, index in timeline.play(kitchen, times):
+        if step and index != current:
+            wait_for_enter(index, timeline.actions[index])
+        current = index
+        time.sleep(1.0 / 30.0)
+
+
+def _judge_kinematically(context: RunContext) -> tuple[Verification, Timeline]:
+    clock = time.perf_counter()
+    viewing, trajectory = context.viewing, context.run.trajectory
+    wait = wait_for_enter if viewing.step and not viewing.gui else None
+    with build_kitchen_for_task(context.task, gui=viewing.gui, kitchen_map=context.kitchen_map) as fresh:
+        check_joint_count(context.run, fresh.robot.dof, context.trajectory_file)
+        if viewing.meshcat and context.live is None:
+            context.live = start_live_viewer(fresh)
+        initial = fresh.scene.save_state()
+        verification = verify_trajectory(fresh, context.task, trajectory, on_step=wait)
+        timeline = build_timeline(trajectory, verification.tracks)
+        if viewing.gui:
+            fresh.scene.restore_state(initial)
+            _play_in_window(fresh, timeline, viewing.step)
+    context.report.verification = verification.report_data()
+    context.report.timing["verification_s"] = time.perf_counter() - clock
+    return verification, timeline
+
+
+def _spliced(run: SavedRun, after: int, rest: KitchenTrajectory) -> SavedRun:
+    """``run`` with its steps after the first ``after`` replaced by ``rest``."""
+    return replace(run, trajectory=KitchenTrajectory(run.trajectory.steps[:after] + rest.steps))
+
+
+def _judge_physically(
+    context: RunContext, verification: Verification, rollout: RolloutRecorder | None
+) -> PhysicsExecution:
+    """Physics on the file; in a planning run, re-plans the rest where the scene drifts, writes
+    the spliced file and says so (the caller judges it again)."""
+    replan = context.replan if len(context.replans) < MAX_REPLANS else None
+    execution = judge_under_physics(context.task, context.run.trajectory, verification, context.report,
+                                    context.kitchen_map, on_frame=rollout, replan=replan)
+    if execution.replan is not None:
+        context.replans.append(execution.replan.data())
+        if execution.replan.trajectory is None:
+            context.report.fail("physics", f"{execution.replan.reason}; no re-plan from the simulated scene")
+        else:
+            context.run = _spliced(context.run, execution.replan.after, execution.replan.trajectory)
+            write_trajectory(context.trajectory_file, context.run)
+            context.report.plan = context.run.trajectory.plan
+            say(f"physics: {execution.replan.reason}; re-planned the rest and wrote it into "
+                f"{context.trajectory_file.name}: judging the file again")
+    execution.replans = list(context.replans)
+    context.report.physics = execution.report_data()
+    return execution
+
+
+def judge_and_render(context: RunContext) -> int:
+    """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code."""
+    while True:
+        verification, timeline = _judge_kinematically(context)
+        rollout = RolloutRecorder() if context.viewing.video else None
+        physics = None
+        if context.viewing.physics:
+            physics = _judge_physically(context, verification, rollout)
+        if physics is None or physics.replan is None or physics.replan.trajectory is None:
+            break
+    if not verification.verified:
+        context.report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
+    _render(context, timeline, rollout)
+    return finish(context.report, context.out_dir, context.inputs, context.report_name)
+
+
+def _render(context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None) -> None:
+    clock = time.perf_counter()
+    run, report, out_dir = context.run, context.report, context.out_dir
+    velocities = run.mode == "optimizes"
+    title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles" + (
+        " and velocities" if velocities else "")
+    report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, velocities).name
+    report.outputs["gif"] = report.outputs["html"] = None
+    if context.viewing.video:
+        with build_kitchen_for_task(context.task, kitchen_map=context.kitchen_map) as kitchen:
+            html_clock = time.perf_counter()
+            if rollout is not None and rollout.captured:  # the motion the simulator executed
+                report.outputs["html"] = rollout.write(out_dir / HTML_FILE, context.live).name
+                report.outputs["html_shows"] = "physics"
+            else:
+                html = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, context.live)
+                report.outputs["html"] = html.name
+                report.outputs["html_shows"] = "kinematic replay"
+            report.timing["html_s"] = time.perf_counter() - html_clock
+            images = render_replay(kitchen, timeline)
+        if images:
+            report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
+        say(f"rendered {len(images)} frames of the replay")
+    report.timing["rendering_s"] = time.perf_counter() - clock
+
+
+def finish(report: RunReport, out_dir: Path, inputs: RunInputs, report_name: str = REPORT_FILE) -> int:
+    """Write the report and print the verdict line; the exit code."""
+    if report.started is not None:
+        report.timing["total_s"] = time.perf_counter() - report.started
+    path = report.write(out_dir / report_name)
+    verification = report.verification or {}
+    files = inputs.words()
+    if report.solved:
+        goals = ", ".join(verification.get("goal_atoms", {}))  # type: ignore[arg-type]
+        clearance = verification.get("min_clearance_m")
+        margin = f"min clearance {clearance * 1000:.1f} mm" if isinstance(clearance, float) else "no motion"
+        say(f"SOLVED and verified: {len(report.plan or [])} actions, collision-free ({margin}), goal {goals} "
+            f"true; {report.verdicts()}; {files}; report {path}")
+        return int(ExitCode.SOLVED)
+    failure = report.failure or {}
+    say(f"NOT SOLVED ({failure.get('stage')}): {failure.get('reason')}; {report.verdicts()}; {files}; "
+        f"report {path}")
+    return int(ExitCode.NO_PLAN)
+
