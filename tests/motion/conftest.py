@@ -1,14 +1,20 @@
 """Fixtures for motion-planning tests: the unit square, small obstacle worlds, and the kitchen
-(built only for the tests that compare a planning-time geometry model with PyBullet)."""
+(built only for the tests that compare a planning-time geometry model with PyBullet), with the
+pair of checkers such a comparison needs: PyBullet's and its twin in the model under test."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Generic, TypeVar
 
+import numpy as np
 import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem
+from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targets
 from kitchen_tamp.motion import ConfigurationSpace
+from kitchen_tamp.world import PyBulletCollisionChecker
+from kitchen_tamp.world.scene_description import describe_collision_checker
 from tests.kitchen.conftest import REPO
 from tests.motion.toy_worlds import (
     ENCLOSED_GOAL_WORLD,
@@ -39,3 +45,34 @@ def kitchen() -> Iterator[KitchenScene]:
     _, built = load_kitchen_problem(REPO / "pddl" / "problem.pddl")
     with built:
         yield built
+
+
+Model = TypeVar("Model")
+
+
+@dataclass(frozen=True, eq=False)
+class CheckerPair(Generic[Model]):
+    """PyBullet's checker of a kitchen state and the planning-time model of the same state."""
+
+    pybullet: PyBulletCollisionChecker
+    model: Model
+
+
+def twin(checker: PyBulletCollisionChecker, model: Callable[..., Model]) -> Model:
+    """The same scene for the other model, described from the files the simulator loaded."""
+    return model(describe_collision_checker(checker), margin=checker.margin)
+
+
+def free_hand_pair(kitchen: KitchenScene, model: Callable[..., Model]) -> CheckerPair[Model]:
+    """The kitchen as it starts, the hand empty."""
+    checker = kitchen.collision_checker()
+    return CheckerPair(checker, twin(checker, model))
+
+
+def holding_spam_pair(kitchen: KitchenScene, model: Callable[..., Model]) -> CheckerPair[Model]:
+    """The hand holds the spam box as the pick skill grasped it (the kitchen is restored after)."""
+    with kitchen.scene.preserved():
+        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
+        assert kitchen.held_box() == "spam"
+        checker = kitchen.collision_checker()
+    return CheckerPair(checker, twin(checker, model))

@@ -4,53 +4,37 @@ the finite-difference one."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, sample_targets
+from kitchen_tamp.kitchen import KitchenScene
 from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.motion.trajopt.program import ClearanceConstraint, one_at_a_time
 from kitchen_tamp.world import (
     AllowedContact,
     Pose,
-    PyBulletCollisionChecker,
     make_collision_checker,
 )
-from kitchen_tamp.world.scene_description import describe_collision_checker
+from tests.motion.conftest import CheckerPair, free_hand_pair, holding_spam_pair, twin
 
 CONFIGURATIONS = 500
 NEAR_CONTACT = 0.003
 """Disagreements are allowed only where PyBullet's clearance is this close (m) to zero."""
 
 
-@dataclass(frozen=True, eq=False)
-class CheckerPair:
-    pybullet: PyBulletCollisionChecker
-    drake: DrakeCollisionChecker
-
-
-def drake_twin(checker: PyBulletCollisionChecker) -> DrakeCollisionChecker:
-    """The same scene for the other model, described from the files the simulator loaded."""
-    return DrakeCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
+DrakePair = CheckerPair[DrakeCollisionChecker]
 
 
 @pytest.fixture(scope="module")
-def free(kitchen: KitchenScene) -> CheckerPair:
-    checker = kitchen.collision_checker()
-    return CheckerPair(checker, drake_twin(checker))
+def free(kitchen: KitchenScene) -> DrakePair:
+    return free_hand_pair(kitchen, DrakeCollisionChecker)
 
 
 @pytest.fixture(scope="module")
-def holding(kitchen: KitchenScene, free: CheckerPair) -> CheckerPair:
-    """The hand holds the spam box as the pick skill grasped it."""
-    with kitchen.scene.preserved():
-        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
-        assert kitchen.held_box() == "spam"
-        checker = kitchen.collision_checker()
-    return CheckerPair(checker, drake_twin(checker))
+def holding(kitchen: KitchenScene) -> DrakePair:
+    return holding_spam_pair(kitchen, DrakeCollisionChecker)
 
 
 def countertop_configurations(kitchen: KitchenScene) -> tuple[np.ndarray, np.ndarray]:
@@ -67,15 +51,15 @@ def countertop_configurations(kitchen: KitchenScene) -> tuple[np.ndarray, np.nda
 
 @pytest.mark.parametrize("scene", ["free", "holding"])
 def test_agrees_with_pybullet_except_near_contact(request: pytest.FixtureRequest, scene: str) -> None:
-    pair: CheckerPair = request.getfixturevalue(scene)
+    pair: DrakePair = request.getfixturevalue(scene)
     rng = np.random.default_rng(1)
     qs = rng.uniform(pair.pybullet.lower, pair.pybullet.upper, size=(CONFIGURATIONS, 7))
-    pybullet, drake = pair.pybullet.is_valid(qs), pair.drake.is_valid(qs)
+    pybullet, drake = pair.pybullet.is_valid(qs), pair.model.is_valid(qs)
     assert 0.1 < pybullet.mean() < 0.95
     disagreements = np.flatnonzero(pybullet != drake)
     assert len(disagreements) <= 0.05 * CONFIGURATIONS
     clearance = pair.pybullet.min_clearance(qs[disagreements])
-    distance = [pair.drake.min_distance(q) for q in qs[disagreements]]
+    distance = [pair.model.min_distance(q) for q in qs[disagreements]]
     report = [
         (int(i), bool(pybullet[i]), round(float(c), 5), round(d, 5))
         for i, c, d in zip(disagreements, clearance, distance, strict=True)
@@ -86,18 +70,18 @@ def test_agrees_with_pybullet_except_near_contact(request: pytest.FixtureRequest
 
 @pytest.mark.parametrize("scene", ["free", "holding"])
 def test_checks_the_same_pairs_as_pybullet(request: pytest.FixtureRequest, scene: str) -> None:
-    pair: CheckerPair = request.getfixturevalue(scene)
+    pair: DrakePair = request.getfixturevalue(scene)
     pybullet = {  # white box: the PyBullet checker's pair table
         frozenset((f"{a.name}/{a.link_name(i)}", f"{b.name}/{b.link_name(j)}"))
         for a, i, b, j in pair.pybullet._pairs
     }
-    assert pair.drake.checked_pairs == pybullet
+    assert pair.model.checked_pairs == pybullet
 
 
 def test_allowed_contacts_are_checked_to_their_bound(kitchen: KitchenScene) -> None:
     handle = AllowedContact("kitchen", "drawer_handle", kitchen.robot.gripper_links)
     checker = make_collision_checker(kitchen.scene, kitchen.robot, [handle])
-    drake = drake_twin(checker)
+    drake = twin(checker, DrakeCollisionChecker)
     gripper_on_handle = frozenset(("panda/panda_hand", "kitchen/drawer_handle"))
     assert gripper_on_handle in drake.checked_pairs
     assert drake.contact_pairs == {gripper_on_handle: handle.max_penetration} | {
@@ -108,28 +92,28 @@ def test_allowed_contacts_are_checked_to_their_bound(kitchen: KitchenScene) -> N
     assert frozenset(("panda/panda_link7", "kitchen/drawer_handle")) not in drake.contact_pairs
 
 
-def test_hand_in_the_countertop_collides_in_both(kitchen: KitchenScene, free: CheckerPair) -> None:
+def test_hand_in_the_countertop_collides_in_both(kitchen: KitchenScene, free: DrakePair) -> None:
     above, inside = countertop_configurations(kitchen)
-    for checker in (free.pybullet, free.drake):
+    for checker in (free.pybullet, free.model):
         assert checker.is_valid(np.stack([above, inside])).tolist() == [True, False]
         assert checker.segment_valid(above, above + 0.01)
         assert not checker.segment_valid(above, inside)
-    assert free.drake.min_distance(inside) < 0.0 < free.drake.min_distance(above)
-    assert not free.drake.is_valid(free.drake.upper + 0.1)[0]
+    assert free.model.min_distance(inside) < 0.0 < free.model.min_distance(above)
+    assert not free.model.is_valid(free.model.upper + 0.1)[0]
 
 
-def test_margin_means_minimum_distance(kitchen: KitchenScene, free: CheckerPair) -> None:
+def test_margin_means_minimum_distance(kitchen: KitchenScene, free: DrakePair) -> None:
     checker = make_collision_checker(kitchen.scene, kitchen.robot, margin=0.02)
-    drake = drake_twin(checker)
+    drake = twin(checker, DrakeCollisionChecker)
     qs = np.random.default_rng(2).uniform(drake.lower, drake.upper, size=(40, 7))
-    distances = np.array([free.drake.min_distance(q) for q in qs])
+    distances = np.array([free.model.min_distance(q) for q in qs])
     assert drake.is_valid(qs).tolist() == (distances >= 0.02).tolist()
 
 
-def test_signed_distance_gradient_is_the_finite_difference(free: CheckerPair, holding: CheckerPair) -> None:
+def test_signed_distance_gradient_is_the_finite_difference(free: DrakePair, holding: DrakePair) -> None:
     rng = np.random.default_rng(3)
     checked = 0
-    for drake in (free.drake, holding.drake):
+    for drake in (free.model, holding.model):
         for q in rng.uniform(drake.lower, drake.upper, size=(30, 7)):
             value, gradient = drake.signed_distance(q)
             if not 0.005 < value < drake.distance_horizon - 0.01:
@@ -145,13 +129,13 @@ def test_signed_distance_gradient_is_the_finite_difference(free: CheckerPair, ho
     assert checked >= 10
 
 
-def test_signed_distance_plugs_into_trajectory_optimisation(free: CheckerPair) -> None:
+def test_signed_distance_plugs_into_trajectory_optimisation(free: DrakePair) -> None:
     from pydrake.autodiffutils import ExtractGradient, ExtractValue, InitializeAutoDiff
 
-    q = free.drake.lower * 0.3 + free.drake.upper * 0.7
-    value, gradient = free.drake.signed_distance(q)
+    q = free.model.lower * 0.3 + free.model.upper * 0.7
+    value, gradient = free.model.signed_distance(q)
     # one row: the waypoint q itself, out of a run of two waypoints
-    constraint = ClearanceConstraint(one_at_a_time(free.drake.signed_distance), np.array([[1.0, 0.0]]), [0])
+    constraint = ClearanceConstraint(one_at_a_time(free.model.signed_distance), np.array([[1.0, 0.0]]), [0])
     variables = InitializeAutoDiff(np.concatenate([q, np.zeros(7)])).reshape(-1)
     evaluated = constraint(variables)
     extracted: Any = (ExtractValue(evaluated), ExtractGradient(evaluated))

@@ -4,13 +4,11 @@ finite-difference ones, and it is built from what the simulator loaded (no drift
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pybullet as p
 import pytest
 
-from kitchen_tamp.kitchen import KitchenScene, sample_targets
+from kitchen_tamp.kitchen import KitchenScene
 from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.covering import (
@@ -29,38 +27,25 @@ from kitchen_tamp.motion.geometry.spheres.tight_covering import (
     verify_covering,
 )
 from kitchen_tamp.motion.geometry.urdf import read_urdf
-from kitchen_tamp.world import PyBulletCollisionChecker, panda_urdf_path
+from kitchen_tamp.world import panda_urdf_path
 from kitchen_tamp.world.scene_description import describe_collision_checker
+from tests.motion.conftest import CheckerPair, free_hand_pair, holding_spam_pair, twin
 
 RANDOM_CONFIGURATIONS = 2000
 NEAR_CONFIGURATIONS = 300
 
 
-@dataclass(frozen=True, eq=False)
-class CheckerPair:
-    pybullet: PyBulletCollisionChecker
-    spheres: SphereCollisionChecker
-
-
-def sphere_twin(checker: PyBulletCollisionChecker) -> SphereCollisionChecker:
-    """The same scene for the other model, described from the files the simulator loaded."""
-    return SphereCollisionChecker(describe_collision_checker(checker), margin=checker.margin)
+SpherePair = CheckerPair[SphereCollisionChecker]
 
 
 @pytest.fixture(scope="module")
-def free(kitchen: KitchenScene) -> CheckerPair:
-    checker = kitchen.collision_checker()
-    return CheckerPair(checker, sphere_twin(checker))
+def free(kitchen: KitchenScene) -> SpherePair:
+    return free_hand_pair(kitchen, SphereCollisionChecker)
 
 
 @pytest.fixture(scope="module")
-def holding(kitchen: KitchenScene) -> CheckerPair:
-    """The hand holds the spam box as the pick skill grasped it."""
-    with kitchen.scene.preserved():
-        sample_targets(kitchen, "pickUp", ("spam", "countertop"), np.random.default_rng(0)).apply(kitchen)
-        assert kitchen.held_box() == "spam"
-        checker = kitchen.collision_checker()
-    return CheckerPair(checker, sphere_twin(checker))
+def holding(kitchen: KitchenScene) -> SpherePair:
+    return holding_spam_pair(kitchen, SphereCollisionChecker)
 
 
 def test_spheres_cover_every_panda_collision_hull() -> None:
@@ -120,9 +105,9 @@ def test_generated_spheres_cover_and_stay_close() -> None:
         assert max(reaches) < 0.03
 
 
-def test_batch_kinematics_is_pybullets(kitchen: KitchenScene, free: CheckerPair) -> None:
-    tree, body = free.spheres.model.tree, kitchen.robot.body
-    qs = np.random.default_rng(1).uniform(free.spheres.lower, free.spheres.upper, size=(12, 7))
+def test_batch_kinematics_is_pybullets(kitchen: KitchenScene, free: SpherePair) -> None:
+    tree, body = free.model.model.tree, kitchen.robot.body
+    qs = np.random.default_rng(1).uniform(free.model.lower, free.model.upper, size=(12, 7))
     poses = tree.link_poses(qs)
     with kitchen.scene.preserved():
         for q, pose in zip(qs, poses, strict=True):
@@ -132,7 +117,7 @@ def test_batch_kinematics_is_pybullets(kitchen: KitchenScene, free: CheckerPair)
                 np.testing.assert_allclose(pose[tree.link_index[link]], expected, atol=1e-6)
 
 
-def near_contact(pair: CheckerPair, count: int, rng: np.random.Generator) -> np.ndarray:
+def near_contact(pair: SpherePair, count: int, rng: np.random.Generator) -> np.ndarray:
     """Configurations within a few millimetres of PyBullet's contact: bisected between a free and a
     colliding sample."""
     lower, upper = pair.pybullet.lower, pair.pybullet.upper
@@ -151,48 +136,48 @@ def near_contact(pair: CheckerPair, count: int, rng: np.random.Generator) -> np.
 
 @pytest.mark.parametrize("scene", ["free", "holding"])
 def test_never_calls_free_what_pybullet_finds_colliding(request: pytest.FixtureRequest, scene: str) -> None:
-    pair: CheckerPair = request.getfixturevalue(scene)
+    pair: SpherePair = request.getfixturevalue(scene)
     rng = np.random.default_rng(2)
     random = rng.uniform(pair.pybullet.lower, pair.pybullet.upper, size=(RANDOM_CONFIGURATIONS, 7))
     for qs in (random, near_contact(pair, NEAR_CONFIGURATIONS, rng)):
-        pybullet, spheres = pair.pybullet.is_valid(qs), pair.spheres.is_valid(qs)
+        pybullet, spheres = pair.pybullet.is_valid(qs), pair.model.is_valid(qs)
         assert 0.05 < pybullet.mean() < 0.95
         missed = np.flatnonzero(spheres & ~pybullet)
         assert len(missed) == 0, pair.pybullet.min_clearance(qs[missed])
-    pybullet, spheres = pair.pybullet.is_valid(random), pair.spheres.is_valid(random)
+    pybullet, spheres = pair.pybullet.is_valid(random), pair.model.is_valid(random)
     false_positives = np.count_nonzero(pybullet & ~spheres) / np.count_nonzero(pybullet)
     assert false_positives < 0.06  # tight: few configurations PyBullet finds free are refused
 
 
 @pytest.mark.slow
-def test_compiled_kernel_agrees_with_numpy(free: CheckerPair, holding: CheckerPair) -> None:
+def test_compiled_kernel_agrees_with_numpy(free: SpherePair, holding: SpherePair) -> None:
     rng = np.random.default_rng(3)
     for pair in (free, holding):
-        qs = rng.uniform(pair.spheres.lower - 0.05, pair.spheres.upper + 0.05, size=(300, 7))
-        verdicts = pair.spheres.is_valid(qs)
+        qs = rng.uniform(pair.model.lower - 0.05, pair.model.upper + 0.05, size=(300, 7))
+        verdicts = pair.model.is_valid(qs)
         assert 0.05 < verdicts.mean() < 0.95
-        assert verdicts.tolist() == pair.spheres.is_valid_uncompiled(qs).tolist()
+        assert verdicts.tolist() == pair.model.is_valid_uncompiled(qs).tolist()
 
 
-def test_pair_gradients_are_the_finite_differences(free: CheckerPair, holding: CheckerPair) -> None:
+def test_pair_gradients_are_the_finite_differences(free: SpherePair, holding: SpherePair) -> None:
     rng = np.random.default_rng(4)
     step = 1e-6
     for pair in (free, holding):
-        for q in rng.uniform(pair.spheres.lower, pair.spheres.upper, size=(5, 7)):
-            distances, gradients = pair.spheres.pair_distances(q)
+        for q in rng.uniform(pair.model.lower, pair.model.upper, size=(5, 7)):
+            distances, gradients = pair.model.pair_distances(q)
             numeric = np.empty_like(gradients)
             for joint in range(7):
                 offset = np.zeros(7)
                 offset[joint] = step
                 numeric[:, joint] = (
-                    pair.spheres.pair_distances(q + offset)[0] - pair.spheres.pair_distances(q - offset)[0]
+                    pair.model.pair_distances(q + offset)[0] - pair.model.pair_distances(q - offset)[0]
                 ) / (2 * step)
             # pairs at a kink (a box edge, a sphere centre on a box's medial plane) move off it
             smooth = np.all(np.abs(numeric - gradients) < 1e-4, axis=1)
             assert smooth.mean() > 0.99
             assert np.all(np.abs(distances[:3]) < 10.0)
-            signed, _ = pair.spheres.signed_distance(q)
-            assert signed == pytest.approx(min(float(distances.min()), pair.spheres.distance_horizon))
+            signed, _ = pair.model.signed_distance(q)
+            assert signed == pytest.approx(min(float(distances.min()), pair.model.distance_horizon))
 
 
 def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) -> None:
@@ -201,7 +186,7 @@ def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) ->
     with kitchen.scene.preserved():
         for opening in (0.0, 0.2):
             kitchen.scene.set_joint_positions(kitchen.kitchen, ["drawer_joint"], [opening])
-            spheres = sphere_twin(kitchen.collision_checker()).model
+            spheres = twin(kitchen.collision_checker(), SphereCollisionChecker).model
             boxes = spheres.boxes
             corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
             for body_name, link in set(boxes.owners):
@@ -220,9 +205,9 @@ def test_model_is_built_from_what_the_simulator_loaded(kitchen: KitchenScene) ->
             np.testing.assert_allclose(pose[0], kitchen.robot.body.base_pose().matrix(), atol=1e-9)
 
 
-def test_screened_checker_gives_drakes_verdicts(free: CheckerPair, kitchen: KitchenScene) -> None:
+def test_screened_checker_gives_drakes_verdicts(free: SpherePair, kitchen: KitchenScene) -> None:
     description = describe_collision_checker(free.pybullet)
     drake = DrakeCollisionChecker(description)
-    screened = SphereScreenedChecker(free.spheres, drake)
+    screened = SphereScreenedChecker(free.model, drake)
     qs = np.random.default_rng(5).uniform(drake.lower, drake.upper, size=(200, 7))
     assert screened.is_valid(qs).tolist() == drake.is_valid(qs).tolist()
