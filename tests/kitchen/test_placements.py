@@ -20,7 +20,8 @@ from kitchen_tamp.kitchen import (
     load_kitchen_map,
     sample_targets,
 )
-from kitchen_tamp.kitchen.skills.placements import boxes_overlap
+from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.kitchen.skills.placements import boxes_overlap, fits_somewhere
 from kitchen_tamp.planning import load_task
 from kitchen_tamp.shipped_kitchens import kitchen_folder
 from kitchen_tamp.world import Pose
@@ -136,3 +137,24 @@ def test_the_seed_kitchen_still_refuses_a_box_of_the_wrong_type() -> None:
         pytest.raises(UnknownObjectError, match="placeOn needs a surface here, sugar is a box"),
     ):
         sample_targets(kitchen, "placeOn", ("sugar", "sugar"), np.random.default_rng(0))
+
+
+def test_a_box_fits_a_region_in_some_orientation_or_in_none() -> None:
+    drawer = SupportRegion("drawer", Pose((0.0, 0.0, 0.0)), (0.17, 0.17), 0.2)
+    assert fits_somewhere(drawer, (0.10, 0.05, 0.085))  # lying flat
+    assert fits_somewhere(drawer, (0.06, 0.06, 0.50))  # only standing up
+    assert fits_somewhere(drawer, (0.40, 0.40, 0.07))  # only on its edge, across the diagonal
+    assert not fits_somewhere(drawer, (0.45, 0.45, 0.07))  # (0.45 + 0.07) / sqrt(2) > 0.34
+    assert fits_somewhere(drawer, (0.45, 0.45, 0.07), centre_inset=0.085)  # stacked: its centre over it
+
+
+def test_a_box_too_large_for_the_region_is_named_as_such(
+    tray: KitchenScene, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    act(tray, "pick glass tray")
+    real_size = tray.box_size
+    monkeypatch.setattr(tray, "box_size", lambda box: (0.5, 0.5, 0.5) if box == "glass" else real_size(box))
+    with pytest.raises(SkillFailure) as failed:
+        sample_targets(tray, "place", ("glass", "sink"), np.random.default_rng(0))
+    assert failed.value.kind is FailureKind.TOO_LARGE and failed.value.region == "sink"
+    assert "glass fits sink in no orientation" in str(failed.value)

@@ -42,6 +42,8 @@ class FailureKind(StrEnum):
     """The scene contradicts the action (the hand is full, the drawer closed, the box elsewhere)."""
     NO_GRASP = "no_grasp"
     """The object fits no grasp of the hand."""
+    TOO_LARGE = "too_large"
+    """The object fits the region in no orientation, whatever else is there."""
     FULL = "full"
     """No sampled placement was free of the objects already there."""
     OBSTRUCTED = "obstructed"

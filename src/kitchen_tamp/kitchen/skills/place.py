@@ -19,6 +19,7 @@ from kitchen_tamp.kitchen.skills.placements import (
     boxes_overlap,
     down_face,
     face_along,
+    fits_somewhere,
     overlaps_region,
     sample_placement,
 )
@@ -182,6 +183,10 @@ def sample_place(
     box_from_tool = (robot.hand_from_tool().inverse() @ hand_from_box).inverse()
     hand_above = face_along(box_from_tool.rotation[:, 2])
     region = kitchen.region(target)
+    centre_inset = 0.5 * min(region.half_size) if target in kitchen.boxes else None
+    if not fits_somewhere(region, kitchen.box_size(box), centre_inset):
+        detail = f"{box} fits {target} in no orientation"
+        raise SkillFailure(text, detail, FailureKind.TOO_LARGE, region=target)
     problem = PlaceProblem(
         kitchen=kitchen,
         action=action,
@@ -193,7 +198,7 @@ def sample_place(
             (down_face(body.base_pose()), parameters.keep_down_probability),
             (hand_above, parameters.hand_above_probability),
         ),
-        centre_inset=0.5 * min(region.half_size) if target in kitchen.boxes else None,
+        centre_inset=centre_inset,
         neighbours=tuple(
             (name, kitchen.box(name).base_pose(), kitchen.box_size(name))
             for name in kitchen.boxes

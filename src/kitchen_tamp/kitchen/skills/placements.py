@@ -79,6 +79,28 @@ def sample_placement(
     return Placement(region.name, region.world_from_region @ region_from_box, down_axis, down_sign)
 
 
+FIT_YAW_STEPS = 361
+"""Yaws, from 0 to 90 degrees, at which ``fits_somewhere`` tries a footprint (a quarter degree apart)."""
+
+
+def fits_somewhere(region: SupportRegion, size: Size, centre_inset: float | None = None) -> bool:
+    """Whether some face down and some yaw put the box's footprint inside ``region`` (or, with
+    ``centre_inset``, its centre that far inside it), as ``sample_placement`` requires; yaws are
+    tried a quarter degree apart, so a box that fits only within a narrower window of yaw is
+    said not to fit."""
+    hx, hy = region.half_size
+    if centre_inset is not None:
+        return min(hx, hy) >= centre_inset
+    yaw = np.linspace(0.0, np.pi / 2.0, FIT_YAW_STEPS)
+    cos, sin = np.cos(yaw), np.sin(yaw)
+    for down_axis in range(3):
+        a, b = (size[i] / 2.0 for i in range(3) if i != down_axis)
+        fits = (a * cos + b * sin <= hx) & (a * sin + b * cos <= hy)
+        if fits.any():
+            return True
+    return False
+
+
 def down_face(world_from_box: Pose) -> tuple[int, int]:
     """(axis, sign) of the box face that points most downwards."""
     return face_along(world_from_box.rotation.T @ np.array([0.0, 0.0, -1.0]))
