@@ -34,7 +34,7 @@ plans); h_add and h_FF are not, but guide greedy search much better.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Literal
 
 from kitchen_tamp.planning.task import State, Task, bits, mask_of
@@ -328,10 +328,13 @@ class RelaxedExploration:
         explored = self.additive_costs(state)
         if explored is None:
             return None
-        cost, supporter = explored
+        return self.supported_plan(*explored, self.goal_ids)
+
+    def supported_plan(self, cost: list[float], supporter: list[int], targets: Iterable[int]) -> list[int]:
+        """The best supporters' relaxed plan for ``targets`` from ``additive_costs``' answer."""
         chosen: dict[int, None] = {}
         marked = bytearray(self.n_atoms)
-        open_atoms = list(self.goal_ids)
+        open_atoms = list(targets)
         preconditions_of = self.preconditions_of
         while open_atoms:
             atom = open_atoms.pop()
