@@ -47,7 +47,7 @@ UNSETTLED = 1 << 40
 If some cost reaches ``UNSETTLED`` divided by the most preconditions of an
 action (only in contrived tasks), the exploration is repeated with its square."""
 
-HeuristicName = Literal["hmax", "hadd", "hff"]
+HeuristicName = Literal["hmax", "hadd", "hff", "lmcut"]
 
 RelaxedPlanSupporters = Literal["hadd", "ff"]
 """Where h_FF's relaxed plan takes its achievers from: h_add's best supporters or FF's planning graph."""
@@ -371,6 +371,10 @@ class RelaxedExploration:
 def make_heuristic(task: Task, name: HeuristicName) -> Heuristic:
     """The named heuristic bound to ``task``."""
     exploration = RelaxedExploration(task)
+    if name == "lmcut":
+        from kitchen_tamp.planning.landmark_cut import LandmarkCut  # it builds on this module
+
+        return LandmarkCut(exploration)
     heuristics: dict[str, Heuristic] = {
         "hmax": exploration.h_max,
         "hadd": exploration.h_add,
@@ -379,4 +383,5 @@ def make_heuristic(task: Task, name: HeuristicName) -> Heuristic:
     try:
         return heuristics[name]
     except KeyError:
-        raise ValueError(f"unknown heuristic {name!r}; choose from {sorted(heuristics)}") from None
+        choices = [*sorted(heuristics), "lmcut"]
+        raise ValueError(f"unknown heuristic {name!r}; choose from {choices}") from None
