@@ -109,6 +109,7 @@ class LandmarkEvaluator:
         graph = landmark_graph(exploration, task.initial_state) if use_landmarks else None
         self.count = None if graph is None else LandmarkCount(exploration, graph)
         self.pre_masks = exploration.pre_masks
+        self.evaluations = self.dead_ends = 0
 
     def root(self) -> Evaluation:
         state = self.exploration.task.initial_state
@@ -124,8 +125,15 @@ class LandmarkEvaluator:
         exploration = self.exploration
         if exploration.unsolvable:
             return DEAD_END
+        self.evaluations += 1
+        if self.dead_ends * 4 > self.evaluations and exploration.atom_layers(state) is None:
+            # A quarter of the states so far were dead ends: the bitset reachability test that tells
+            # them is several times cheaper than h_add's exploration, which would find the same.
+            self.dead_ends += 1
+            return DEAD_END
         explored = exploration.additive_costs(state)
         if explored is None:
+            self.dead_ends += 1
             return DEAD_END
         cost, supporter = explored
         plan = exploration.supported_plan(cost, supporter, exploration.goal_ids)
