@@ -47,6 +47,7 @@ class LandmarkCut:
         self.n_atoms = exploration.n_atoms
         self.preconditions = exploration.preconditions_of
         self.adds = exploration.adds_of
+        self.add_masks = exploration.add_masks
         self.users = exploration.relevant_users
         self.achievers = exploration.achievers
         self.goal_ids = exploration.goal_ids
@@ -108,40 +109,44 @@ class LandmarkCut:
     def _cut(self, state: State, hmax: list[int], choice: list[int], cost: list[int],
              top_goal: int) -> list[int]:
         """The actions from the state's side of the justification graph into the goal zone."""
-        goal_zone = bytearray(self.n_atoms)
-        goal_zone[top_goal] = 1
+        goal_zone = 1 << top_goal
         stack = [top_goal]
         achievers = self.achievers
         while stack:
             atom = stack.pop()
             for action in achievers[atom]:
                 source = choice[action]
-                if cost[action] == 0 and source >= 0 and not goal_zone[source]:
-                    goal_zone[source] = 1
+                if cost[action] == 0 and source >= 0 and not goal_zone >> source & 1:
+                    goal_zone |= 1 << source
                     stack.append(source)
-        before = bytearray(self.n_atoms)
+        before = state
         stack = list(bits(state))
-        for atom in stack:
-            before[atom] = 1
-        cut: dict[int, None] = {}
-        adds, users = self.adds, self.users
-        frontier = [(action, START) for action in self.free_actions]
-        while frontier or stack:
-            if not frontier:
-                atom = stack.pop()
-                frontier = [(action, atom) for action in users[atom]]
-                continue
-            action, source = frontier.pop()
-            if choice[action] != source:
-                continue
-            if any(goal_zone[added] for added in adds[action]):
-                cut[action] = None
-                continue
-            for added in adds[action]:
-                if not before[added]:
-                    before[added] = 1
-                    stack.append(added)
-        return list(cut)
+        cut: list[int] = []
+        add_masks, users = self.add_masks, self.users
+        for action in self.free_actions:
+            before = self._cross(action, goal_zone, before, stack, cut)
+        while stack:
+            atom = stack.pop()
+            for action in users[atom]:
+                if choice[action] == atom:
+                    if add_masks[action] & goal_zone:
+                        cut.append(action)
+                        continue
+                    new = add_masks[action] & ~before
+                    if new:
+                        before |= new
+                        stack.extend(bits(new))
+        return cut
+
+    def _cross(self, action: int, goal_zone: int, before: int, stack: list[int], cut: list[int]) -> int:
+        """A start action into the cut, or its new atoms onto ``stack``; ``before`` grown."""
+        adds = self.add_masks[action]
+        if adds & goal_zone:
+            cut.append(action)
+            return before
+        new = adds & ~before
+        stack.extend(bits(new))
+        return before | new
 
     def _lower(self, cut: list[int], hmax: list[int], choice: list[int], cost: list[int]) -> None:
         """Propagate the lowered costs of ``cut`` through h_max and the precondition choices."""
