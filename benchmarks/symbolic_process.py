@@ -127,7 +127,7 @@ def _command(planner: str, search: str, domain: Path, problem: Path, workdir: Pa
 
 OUTPUT_PATTERNS = {
     # The plain output a user reads (``--json`` would add importing json to every run).
-    "ours": (r"^length (\d+), expanded (\d+) states, evaluated \d+, ([\d.e-]+) s", 1, 2, 3),
+    "ours": (r"^length (\d+), expanded (\d+) states, evaluated \d+, (\d+(?:\.\d*)?(?:e-?\d+)?) s", 1, 2, 3),
     "pyperplan": (r"Plan length: (\d+)", 1, None, None),
     "fd": (r"Plan length: (\d+) step", 1, None, None),
 }
@@ -145,7 +145,7 @@ def _outcome(planner: str, completed: subprocess.CompletedProcess[str]) -> Outco
         return Outcome(int(found.group(length_group)), int(found.group(expanded_group or 0)),
                        float(found.group(seconds_group or 0)))
     expanded = re.findall(r"(\d+) Nodes expanded" if key == "pyperplan" else r"Expanded (\d+) state", text)
-    seconds = re.findall(r"Search time: ([\d.e-]+)", text)
+    seconds = re.findall(r"Search time: (\d+(?:\.\d*)?(?:e-?\d+)?)", text)
     return Outcome(int(found.group(length_group)), int(expanded[-1]) if expanded else None,
                    float(seconds[-1]) if seconds else None)
 
