@@ -26,7 +26,8 @@ def test_every_landmark_and_ordering_holds_on_the_shortest_plans(small_task: Tas
     assert small_task.goal & ~graph.landmarks == 0  # goal atoms are landmarks
     for plan in islice(iter_plans(small_task), 50):
         states = _plan_states(small_task, plan)
-        first = {atom: next(i for i, s in enumerate(states) if s >> atom & 1) for atom in bits(graph.landmarks)}
+        first = {atom: next(i for i, state in enumerate(states) if state >> atom & 1)
+                 for atom in bits(graph.landmarks)}
         for atom in bits(graph.landmarks):
             for before in bits(graph.natural[atom]):
                 assert first[before] < first[atom]  # held at some time before the landmark first does
