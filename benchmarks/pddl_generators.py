@@ -142,7 +142,10 @@ def scaled_kitchen(boxes: int, surfaces: int, drawers: int, seed: int) -> tuple[
     return KITCHEN_STRIPS_DOMAIN, problem
 
 
-def ipc_problem(domain: str, problem: str) -> tuple[str, str]:
-    """An IPC problem kept in ``benchmarks/ipc/DOMAIN/`` (see the README there for its source)."""
+def ipc_problem(domain: str, problem: str, domain_file: str = "domain.pddl") -> tuple[str, str]:
+    """An IPC problem kept in ``benchmarks/ipc/DOMAIN/`` (see the README there for its source).
+
+    Most folders hold one ``domain.pddl``; where the competition gave each problem its own domain
+    file (openstacks), ``domain_file`` names it."""
     folder = IPC_DIR / domain
-    return (folder / "domain.pddl").read_text(), (folder / problem).read_text()
+    return (folder / domain_file).read_text(), (folder / problem).read_text()

@@ -12,12 +12,12 @@ CPU seconds of several repeats, ratio pyperplan / ours; Fast Downward (the
 Pairings (ours / pyperplan / Fast Downward):
 
 - ``bfs``: breadth-first / ``bfs`` / ``astar(blind())``
-- ``astar``: A* with h_max / ``astar`` + ``hmax`` / ``astar(hmax())``
+- ``astar``: A* with LM-cut / ``astar`` + ``lmcut`` / ``astar(lmcut())``
 - ``ehc``: enforced hill climbing, h_FF, helpful actions first / ``ehs`` + ``hff``
   with preferred operators (pruning, no fallback) / ``ehc(h, preferred=[h])``
-- ``gbfs``: greedy best-first, h_FF, lazy evaluation, alternating preferred/all (and novel)
-  queues boosted on progress / ``gbf`` + ``hff`` with preferred operators (pruning) /
-  ``lazy_greedy([h], preferred=[h], boost=1000)``
+- ``gbfs``: greedy best-first, h_FF and the landmark count, lazy evaluation, alternating
+  preferred/all (and novel) queues boosted on progress / ``gbf`` + ``hff`` with preferred operators
+  (pruning) / ``lazy_greedy([h], preferred=[h], boost=1000)`` (the whole-process table: lama-first)
 - ``ehc-plain``, ``gbfs-plain``: the same without helpful actions, against
   pyperplan's and Fast Downward's plain ``ehs``/``ehc(ff())`` and ``gbf``/``eager_greedy([ff()])``
 
@@ -26,6 +26,7 @@ A last table splits one run per problem into phases.
     python benchmarks/symbolic.py                  # everything (about 30 minutes)
     python benchmarks/symbolic.py --process-only   # the whole-process table and its verdict only
     python benchmarks/symbolic.py --quick          # small problems only
+    python benchmarks/symbolic.py --process-only --ipc   # the IPC set against lama-first and pyperplan
 """
 
 from __future__ import annotations
@@ -74,7 +75,7 @@ class Pairing:
 
 PAIRINGS: dict[str, Pairing] = {
     "bfs": Pairing("bfs", None, False, "astar(blind())"),
-    "astar": Pairing("astar", "hmax", False, "astar(hmax())"),
+    "astar": Pairing("astar", "lmcut", False, "astar(lmcut())"),
     "ehc": Pairing("ehs", "hff", True, "let(h, ff(), ehc(h, preferred=[h]))"),
     "gbfs": Pairing("gbf", "hff", True, "let(h, ff(), lazy_greedy([h], preferred=[h], boost=1000))"),
     "ehc-plain": Pairing("ehs", "hff", False, "ehc(ff())"),
@@ -99,20 +100,63 @@ class Problem:
 IPC_PROBLEMS: list[tuple[str, str, tuple[str, ...]]] = [
     ("transport", "task01.pddl", ("bfs", "astar", "gbfs")),
     ("transport", "task04.pddl", ("gbfs",)),
+    ("transport", "task08.pddl", ("gbfs",)),
     ("elevators", "task01.pddl", ("gbfs",)),
     ("elevators", "task03.pddl", ("gbfs",)),
-    ("scanalyzer", "task01.pddl", ("bfs", "gbfs")),
-    ("sokoban", "task01.pddl", ("bfs", "gbfs")),
+    ("elevators", "task28.pddl", ("gbfs",)),
+    ("scanalyzer", "task01.pddl", ("bfs", "astar", "gbfs")),
+    ("scanalyzer", "task08.pddl", ("gbfs",)),
+    ("scanalyzer", "task13.pddl", ("gbfs",)),
+    ("sokoban", "task01.pddl", ("bfs", "astar", "gbfs")),
+    ("sokoban", "task08.pddl", ("gbfs",)),
+    ("sokoban", "task23.pddl", ("gbfs",)),
     ("mystery", "instance-10.pddl", ("gbfs",)),
+    ("mystery", "instance-19.pddl", ("gbfs",)),
+    ("mystery", "instance-6.pddl", ("gbfs",)),
+    ("woodworking", "task05.pddl", ("astar", "gbfs")),
+    ("woodworking", "task20.pddl", ("gbfs",)),
+    ("woodworking", "task30.pddl", ("gbfs",)),
+    ("pegsol", "task13.pddl", ("gbfs",)),
+    ("pegsol", "task23.pddl", ("gbfs",)),
+    ("pegsol", "task28.pddl", ("gbfs",)),
+    ("openstacks", "task08.pddl:domain08.pddl", ("gbfs",)),
+    ("openstacks", "task18.pddl:domain18.pddl", ("gbfs",)),
+    ("openstacks", "task28.pddl:domain28.pddl", ("gbfs",)),
+    ("logistics", "task13.pddl", ("gbfs",)),
+    ("logistics", "task23.pddl", ("gbfs",)),
+    ("logistics", "task28.pddl", ("gbfs",)),
+    ("depot", "task03.pddl", ("gbfs",)),
+    ("depot", "task08.pddl", ("gbfs",)),
+    ("depot", "task13.pddl", ("gbfs",)),
+    ("rovers", "task08.pddl", ("gbfs",)),
+    ("rovers", "task18.pddl", ("gbfs",)),
+    ("rovers", "task23.pddl", ("gbfs",)),
+    ("satellite", "task08.pddl", ("gbfs",)),
+    ("satellite", "task13.pddl", ("gbfs",)),
+    ("satellite", "task18.pddl", ("gbfs",)),
+    ("freecell", "task03.pddl", ("gbfs",)),
+    ("freecell", "task08.pddl", ("gbfs",)),
+    ("freecell", "task13.pddl", ("gbfs",)),
+    ("tpp", "task13.pddl", ("gbfs",)),
+    ("tpp", "task18.pddl", ("gbfs",)),
+    ("tpp", "task23.pddl", ("gbfs",)),
+    ("zenotravel", "task08.pddl", ("astar", "gbfs")),
+    ("zenotravel", "task13.pddl", ("gbfs",)),
+    ("zenotravel", "task18.pddl", ("gbfs",)),
 ]
-"""(domain folder, problem file, searches): the real IPC set; blind and h_max searches where they finish."""
+"""(domain folder, problem file[:domain file], searches): the real IPC set, 15 domains of three problems
+each (``benchmarks/ipc/README.md``); blind search and A* where they finish."""
+
+
+IPC_DOMAINS = {domain for domain, _, _ in IPC_PROBLEMS}
 
 
 def problems(quick: bool) -> list[Problem]:
     every = ("bfs", "astar", "ehc", "gbfs", "ehc-plain", "gbfs-plain")
     guided = ("ehc", "gbfs")
-    ipc = [Problem(f"{domain}-{file.removesuffix('.pddl')}",
-                   lambda domain=domain, file=file: ipc_problem(domain, file), searches)  # type: ignore[misc]
+    ipc = [Problem(f"{domain}-{file.split(':')[0].removesuffix('.pddl')}",
+                   lambda domain=domain, file=file: ipc_problem(domain, *file.split(":")),  # type: ignore[misc]
+                   searches)
            for domain, file, searches in IPC_PROBLEMS]
     items = [
         Problem("kitchen", lambda: kitchen_problem("problem.pddl"), every),
@@ -371,6 +415,7 @@ def main() -> int:
     parser.add_argument("--no-fd", action="store_true", help="skip Fast Downward")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
     parser.add_argument("--only", help="comma-separated problem names to run")
+    parser.add_argument("--ipc", action="store_true", help="the IPC problems of benchmarks/ipc only")
     parser.add_argument("--process-only", action="store_true",
                         help="only the whole-process table (no in-process tables)")
     parser.add_argument("--rounds", type=int, default=5,
@@ -383,7 +428,8 @@ def main() -> int:
         return 0
     logging.getLogger().setLevel(logging.WARNING)
     fd = None if args.no_fd else fast_downward_script()
-    selected = [p for p in problems(args.quick) if not args.only or p.name in args.only.split(",")]
+    selected = [p for p in problems(args.quick) if (not args.only or p.name in args.only.split(","))
+                and (not args.ipc or p.name.split("-")[0] in IPC_DOMAINS)]
     with tempfile.TemporaryDirectory() as tmp:
         rows = [(item.name, *_write_problem(item, Path(tmp)), item.searches) for item in selected]
         # One run first, so that byte code and our grammar cache are built (as after any first run).

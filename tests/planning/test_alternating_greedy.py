@@ -98,7 +98,7 @@ def test_eager_and_lazy_gbfs_are_complete_and_deterministic(small_task: Task, la
 def test_queues_take_turns_and_a_boost_gives_the_preferred_queue_a_run() -> None:
     queues: AlternatingQueues[str] = AlternatingQueues(boost=3)
     for name in "abcdef":
-        queues.push(1.0, name, preferred=name in "def")
+        queues.push((1.0,), name, preferred=name in "def")
     # Turns: all-queue first on a tie, then preferred, ...; each queue first-in first-out.
     assert [queues.pop() for _ in range(4)] == ["a", "d", "b", "e"]
     queues.boost()  # the preferred queue now has 3 turns in hand

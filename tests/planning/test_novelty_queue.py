@@ -78,9 +78,11 @@ def test_the_novel_queue_takes_the_road_long_before_the_plateau_is_exhausted(
     assert with_novelty.solved and with_novelty.plan is not None, with_novelty.message
     assert validate_plan(task, with_novelty.plan).valid
     assert [a.name for a in with_novelty.plan] == ["take-road", *["drive"] * 5, "arrive"]
-    without = alternating_greedy_search(task, SearchBudget(None, budget), lazy=lazy, novelty=False)
+    without = alternating_greedy_search(task, SearchBudget(None, budget), lazy=lazy, novelty=False,
+                                      landmarks=False)
     assert without.status == "budget"  # still flipping switches in the room
-    complete = alternating_greedy_search(task, SearchBudget(None, None), lazy=lazy, novelty=False)
+    complete = alternating_greedy_search(task, SearchBudget(None, None), lazy=lazy, novelty=False,
+                                      landmarks=False)
     assert complete.solved and complete.expanded > 2 ** switches
 
 
@@ -97,7 +99,7 @@ def test_the_novel_queue_takes_its_turn_and_shares_the_boost() -> None:
     queues: AlternatingQueues[str] = AlternatingQueues(boost=2)
     for name, preferred, novel in [("a", False, False), ("b", True, False), ("c", False, True),
                                    ("d", False, False), ("e", True, True)]:
-        queues.push(1.0, name, preferred, novel)
+        queues.push((1.0,), name, preferred, novel)
     # Turns in the order all, preferred, novel; each queue first-in first-out.
     assert [queues.pop() for _ in range(3)] == ["a", "b", "c"]
     queues.boost()  # preferred and novel now have 2 turns in hand each: they alternate

@@ -41,7 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = CommandLineParser(
         prog="activity_planning.py",
         description="Plan a PDDL problem with breadth-first search, enforced hill climbing "
-                    "(h_FF), greedy best-first search (h_FF) or A* (h_max), and print the plans.")
+                    "(h_FF), greedy best-first search (h_FF and landmarks) or A* (LM-cut), and print "
+                    "the plans.")
     parser.add_argument("problem", nargs="?", default=DEFAULT_PROBLEM,
                         help="problem file; a bare name is looked up in the working directory, then in "
                              "the shipped kitchens (default: the kitchen problem.pddl)")

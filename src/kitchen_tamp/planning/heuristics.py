@@ -34,7 +34,7 @@ plans); h_add and h_FF are not, but guide greedy search much better.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Literal
 
 from kitchen_tamp.planning.task import State, Task, bits, mask_of
@@ -47,7 +47,7 @@ UNSETTLED = 1 << 40
 If some cost reaches ``UNSETTLED`` divided by the most preconditions of an
 action (only in contrived tasks), the exploration is repeated with its square."""
 
-HeuristicName = Literal["hmax", "hadd", "hff"]
+HeuristicName = Literal["hmax", "hadd", "hff", "lmcut"]
 
 RelaxedPlanSupporters = Literal["hadd", "ff"]
 """Where h_FF's relaxed plan takes its achievers from: h_add's best supporters or FF's planning graph."""
@@ -328,10 +328,13 @@ class RelaxedExploration:
         explored = self.additive_costs(state)
         if explored is None:
             return None
-        cost, supporter = explored
+        return self.supported_plan(*explored, self.goal_ids)
+
+    def supported_plan(self, cost: list[float], supporter: list[int], targets: Iterable[int]) -> list[int]:
+        """The best supporters' relaxed plan for ``targets`` from ``additive_costs``' answer."""
         chosen: dict[int, None] = {}
         marked = bytearray(self.n_atoms)
-        open_atoms = list(self.goal_ids)
+        open_atoms = list(targets)
         preconditions_of = self.preconditions_of
         while open_atoms:
             atom = open_atoms.pop()
@@ -368,6 +371,10 @@ class RelaxedExploration:
 def make_heuristic(task: Task, name: HeuristicName) -> Heuristic:
     """The named heuristic bound to ``task``."""
     exploration = RelaxedExploration(task)
+    if name == "lmcut":
+        from kitchen_tamp.planning.landmark_cut import LandmarkCut  # it builds on this module
+
+        return LandmarkCut(exploration)
     heuristics: dict[str, Heuristic] = {
         "hmax": exploration.h_max,
         "hadd": exploration.h_add,
@@ -376,4 +383,5 @@ def make_heuristic(task: Task, name: HeuristicName) -> Heuristic:
     try:
         return heuristics[name]
     except KeyError:
-        raise ValueError(f"unknown heuristic {name!r}; choose from {sorted(heuristics)}") from None
+        choices = [*sorted(heuristics), "lmcut"]
+        raise ValueError(f"unknown heuristic {name!r}; choose from {choices}") from None

@@ -37,54 +37,64 @@ import heapq
 import itertools
 from typing import Generic, TypeVar
 
-from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration, RelaxedPlanSupporters
+from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
+from kitchen_tamp.planning.landmark_count import Evaluation, LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
 
 DEFAULT_BOOST = 1000
-"""Turns the preferred and novel queues each get on each improvement of the best h (Fast Downward: 1000)."""
-
-ALL, PREFERRED, NOVEL = 0, 1, 2
-"""The queues, in the order that wins ties between turns."""
+"""Turns the preferred and novel queues each get on each improvement of a best h (Fast Downward: 1000)."""
 
 Item = TypeVar("Item")
 
 
 class AlternatingQueues(Generic[Item]):
-    """A queue of all entries, one of the preferred and one of the novel ones, taken in turns, with boosting.
+    """Per heuristic a queue of all entries and one of the preferred ones, and one of novel ones, in turns.
 
-    Each queue has a priority: the number of times it was taken from, minus its
-    boosts; ``pop`` takes from the non-empty queue with the lowest priority
-    (ties in the order all, preferred, novel). An item in several queues comes
-    out once from each: callers skip what they have already handled.
+    The queues are, in the order that wins ties between turns: for each
+    heuristic ``k``, all entries and the preferred entries ordered by the
+    ``k``-th h value; then the novel entries ordered by the first. Each queue
+    has a priority: the number of times it was taken from, minus its boosts;
+    ``pop`` takes from the non-empty queue with the lowest priority. ``boost``
+    gives the preferred and novel queues ``boost`` turns each. An item in
+    several queues comes out once from each: callers skip what they have
+    already handled.
     """
 
-    def __init__(self, boost: int) -> None:
-        self.queues: tuple[list[tuple[float, int, Item]], ...] = ([], [], [])
-        self.priorities = [0, 0, 0]
+    def __init__(self, boost: int, heuristics: int = 1) -> None:
+        self.heuristics = heuristics
+        count = 2 * heuristics + 1
+        self.queues: tuple[list[tuple[float, int, Item]], ...] = tuple([] for _ in range(count))
+        self.priorities = [0] * count
+        self.boosted = [*range(1, 2 * heuristics, 2), 2 * heuristics]
         self.boost_amount = boost
         self.order = itertools.count()
 
     def __bool__(self) -> bool:
         return any(self.queues)
 
-    def push(self, h: float, item: Item, preferred: bool, novel: bool = False) -> None:
-        entry = (h, next(self.order), item)
-        heapq.heappush(self.queues[ALL], entry)
-        if preferred:
-            heapq.heappush(self.queues[PREFERRED], entry)
+    def push(self, h: tuple[float, ...], item: Item, preferred: bool, novel: bool = False) -> None:
+        order = next(self.order)
+        queues = self.queues
+        for k in range(self.heuristics):
+            entry = (h[k], order, item)
+            heapq.heappush(queues[2 * k], entry)
+            if preferred:
+                heapq.heappush(queues[2 * k + 1], entry)
         if novel:
-            heapq.heappush(self.queues[NOVEL], entry)
+            heapq.heappush(queues[-1], (h[0], order, item))
 
     def boost(self) -> None:
-        self.priorities[PREFERRED] -= self.boost_amount
-        self.priorities[NOVEL] -= self.boost_amount
+        for side in self.boosted:
+            self.priorities[side] -= self.boost_amount
 
     def pop(self) -> Item:
-        side = min((i for i in (ALL, PREFERRED, NOVEL) if self.queues[i]),
-                   key=self.priorities.__getitem__)
-        self.priorities[side] += 1
+        priorities, side = self.priorities, -1
+        for index, queue in enumerate(self.queues):
+            if queue and (side < 0 or priorities[index] < priorities[side]):
+                side = index
+        priorities[side] += 1
         return heapq.heappop(self.queues[side])[2]
 
 
@@ -102,35 +112,53 @@ class Novelty:
         return False
 
 
+class _Progress:
+    """The best value of each heuristic so far; an improvement of any boosts the queues."""
+
+    def __init__(self, first: tuple[float, ...]) -> None:
+        self.best = list(first)
+
+    def improves(self, values: tuple[float, ...]) -> bool:
+        improved = False
+        for k, value in enumerate(values):
+            if value < self.best[k]:
+                self.best[k] = value
+                improved = True
+        return improved
+
+
 def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = True,
                               boost: int = DEFAULT_BOOST, novelty: bool = True,
-                              supporters: RelaxedPlanSupporters = "hadd") -> SearchResult:
-    """GBFS with h_FF, taking turns between all states, those reached by helpful actions and novel ones.
+                              landmarks: bool = True) -> SearchResult:
+    """GBFS with h_FF (and the landmark count), taking turns between all, preferred and novel states.
 
-    ``novelty=False`` drops the novel queue (two queues, as Fast Downward's
-    ``eager_greedy``/``lazy_greedy`` with preferred operators); ``supporters``
-    picks where the relaxed plan's achievers come from (see ``heuristics``).
+    ``landmarks=False`` drops the landmark count's queues and preferred
+    operators (h_FF alone, as Fast Downward's ``lazy_greedy`` with preferred
+    operators); ``novelty=False`` drops the novel queue.
     """
-    exploration = RelaxedExploration(task, supporters)
-    h_root, helpful_root = exploration.h_ff_helpful(task.initial_state)
-    if h_root == INFINITY:
+    evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"), landmarks)
+    root = evaluator.root()
+    if root.h_ff == INFINITY:
         return dead_root_result(task, "gbfs", budget)
     novel = Novelty(novelty)
     novel.is_novel(task.initial_state)
     search = _lazy if lazy else _eager
-    return search(task, exploration, novel, budget, boost, h_root, helpful_root)
+    return search(task, evaluator, novel, budget, AlternatingQueues(boost, 2 if evaluator.count else 1))
 
 
-def _eager(task: Task, exploration: RelaxedExploration, novel: Novelty, budget: SearchBudget,
-           boost: int, h_root: float, helpful_root: int) -> SearchResult:
+def _values(evaluation: Evaluation, heuristics: int) -> tuple[float, ...]:
+    return (evaluation.h_ff, evaluation.h_landmarks) if heuristics == 2 else (evaluation.h_ff,)
+
+
+def _eager(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: SearchBudget,
+           queues: AlternatingQueues[State]) -> SearchResult:
     root = task.initial_state
     goal, goal_neg = task.goal, task.goal_neg
-    evaluate, successors = exploration.h_ff_helpful, task.successor_indices
+    successors, heuristics = task.successor_indices, queues.heuristics
     parents: dict[State, State | None] = {root: None}
-    helpful: dict[State, int] = {root: helpful_root}  # of the states queued and not yet expanded
-    queues: AlternatingQueues[State] = AlternatingQueues(boost)
-    queues.push(h_root, root, preferred=False)
-    best_h = h_root
+    known: dict[State, Evaluation] = {root: evaluator.root()}  # of the states queued and not yet expanded
+    queues.push(_values(known[root], heuristics), root, preferred=False)
+    progress = _Progress(_values(known[root], heuristics))
     expanded, evaluated, check_at = 0, 1, 0.0
     while queues:
         if expanded >= check_at:
@@ -139,8 +167,8 @@ def _eager(task: Task, exploration: RelaxedExploration, novel: Novelty, budget: 
                                     budget.elapsed(), budget.describe())
             check_at = budget.next_check(expanded)
         state = queues.pop()
-        preferred_actions = helpful.pop(state, None)
-        if preferred_actions is None:
+        evaluation = known.pop(state, None)
+        if evaluation is None:
             continue  # expanded already, when it came out of another queue
         if state & goal == goal and not state & goal_neg:
             return SearchResult("gbfs", "solved", plan_to(task, parents, state), expanded,
@@ -150,28 +178,29 @@ def _eager(task: Task, exploration: RelaxedExploration, novel: Novelty, budget: 
             if child in parents:
                 continue
             parents[child] = state
-            h_child, helpful_child = evaluate(child)
+            child_evaluation = evaluator.child(child, evaluation.accepted)
             evaluated += 1
-            if h_child == INFINITY:
+            if child_evaluation.h_ff == INFINITY:
                 continue  # a dead end under the relaxation: no plan passes through it
-            helpful[child] = helpful_child
-            queues.push(h_child, child, bool((preferred_actions >> index) & 1), novel.is_novel(child))
-            if h_child < best_h:
-                best_h = h_child
+            known[child] = child_evaluation
+            values = _values(child_evaluation, heuristics)
+            queues.push(values, child, bool(evaluation.preferred >> index & 1), novel.is_novel(child))
+            if progress.improves(values):
                 queues.boost()
     return SearchResult("gbfs", "unsolvable", None, expanded, len(parents), evaluated,
                         budget.elapsed(), unsolvable_message(task, len(parents)))
 
 
-def _lazy(task: Task, exploration: RelaxedExploration, novel: Novelty, budget: SearchBudget,
-          boost: int, h_root: float, helpful_root: int) -> SearchResult:
+def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: SearchBudget,
+          queues: AlternatingQueues[tuple[State | None, State]]) -> SearchResult:
     root = task.initial_state
     goal, goal_neg = task.goal, task.goal_neg
-    evaluate, successors = exploration.h_ff_helpful, task.successor_indices
+    successors, heuristics = task.successor_indices, queues.heuristics
     closed: dict[State, State | None] = {}  # each evaluated state's parent
-    queues: AlternatingQueues[tuple[State | None, State]] = AlternatingQueues(boost)
-    queues.push(h_root, (None, root), preferred=False)
-    best_h = h_root
+    accepted: dict[State, int] = {}  # each expanded state's accepted landmarks
+    root_evaluation = evaluator.root()
+    queues.push(_values(root_evaluation, heuristics), (None, root), preferred=False)
+    progress = _Progress(_values(root_evaluation, heuristics))
     expanded, generated, evaluated, check_at = 0, 1, 0, 0.0
     while queues:
         if expanded >= check_at:
@@ -183,24 +212,22 @@ def _lazy(task: Task, exploration: RelaxedExploration, novel: Novelty, budget: S
         if state in closed:
             continue
         closed[state] = parent
-        if parent is None:
-            h_state, preferred_actions = h_root, helpful_root
-        else:
-            h_state, preferred_actions = evaluate(state)
+        evaluation = root_evaluation if parent is None else evaluator.child(state, accepted[parent])
         evaluated += 1
-        if h_state == INFINITY:
+        if evaluation.h_ff == INFINITY:
             continue
         if state & goal == goal and not state & goal_neg:
             return SearchResult("gbfs", "solved", plan_to(task, closed, state), expanded, generated,
                                 evaluated, budget.elapsed())
-        if h_state < best_h:
-            best_h = h_state
+        accepted[state] = evaluation.accepted
+        values = _values(evaluation, heuristics)
+        if progress.improves(values):
             queues.boost()
         expanded += 1
+        preferred = evaluation.preferred
         for child, index in successors(state):
             if child not in closed:
                 generated += 1
-                queues.push(h_state, (state, child), bool((preferred_actions >> index) & 1),
-                            novel.is_novel(child))
+                queues.push(values, (state, child), bool(preferred >> index & 1), novel.is_novel(child))
     return SearchResult("gbfs", "unsolvable", None, expanded, generated, evaluated,
                         budget.elapsed(), unsolvable_message(task, len(closed)))

@@ -45,10 +45,10 @@ def greedy_best_first_search(
 
 
 def astar_search(
-    task: Task, *, heuristic: HeuristicName = "hmax", time_budget: float | None = None,
+    task: Task, *, heuristic: HeuristicName = "lmcut", time_budget: float | None = None,
     max_expansions: int | None = None,
 ) -> SearchResult:
-    """A*: optimal plans with an admissible heuristic (the default, h_max, is)."""
+    """A*: optimal plans with an admissible heuristic (the default, LM-cut, and h_max are)."""
     return _best_first(task, "astar", make_heuristic(task, heuristic), greedy=False,
                        time_budget=time_budget, max_expansions=max_expansions)
 

@@ -29,13 +29,13 @@ SEARCHES: dict[str, Search] = {
     "gbfs": greedy_best_first_search,
     "astar": astar_search,
 }
-"""Name -> search with its default settings. ``bfs`` and ``astar`` (with h_max) return shortest plans."""
+"""Name -> search with its default settings. ``bfs`` and ``astar`` (with LM-cut) return shortest plans."""
 
 SEARCH_DESCRIPTIONS: dict[str, str] = {
     "bfs": "breadth-first search (optimal)",
     "ehc": "enforced hill climbing with h_FF, helpful actions first",
     "gbfs": "greedy best-first search with h_FF, lazy; all, preferred and novel successors in turn",
-    "astar": "A* with h_max (optimal)",
+    "astar": "A* with LM-cut (optimal)",
 }
 
 
