@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
-from kitchen_tamp.motion.configuration_space import ConfigurationSpace
+from kitchen_tamp.motion.configuration_space import ConfigurationSpace, UniformSamples
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.planning_result import (
     PlanningResult,
@@ -122,7 +122,7 @@ def plan_rrt_connect(
     deadline = clock_start + time_budget_s
     q_start = space.validated(start, "start")
     q_goal = space.validated(goal, "goal")
-    rng = np.random.default_rng(seed)
+    samples = UniformSamples(space, np.random.default_rng(seed))
     segments = CountingSegmentChecker(checker, params.edge_resolution)
     start_tree, goal_tree = ConfigurationTree(q_start), ConfigurationTree(q_goal)
 
@@ -146,7 +146,7 @@ def plan_rrt_connect(
     for iteration in range(1, params.max_iterations + 1):
         if time.perf_counter() >= deadline:
             return finish(PlanStatus.TIME_LIMIT, iteration - 1)
-        target = space.sample_uniform(rng, 1)[0]
+        target = samples.next()
         new = extend_tree(growing, target, segments, params.step_size)
         if new is not None:
             end, reached = connect_tree(other, growing.node(new), segments, params.step_size)
