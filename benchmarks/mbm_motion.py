@@ -11,8 +11,9 @@ boxes, spheres and cylinders) at configurations ``JUDGE_RESOLUTION_RAD`` apart. 
 start or goal Drake finds colliding is counted invalid (as VAMP counts problems its own model
 rejects) and left out.
 
-Times are CPU seconds of the planner alone (model building is not timed); a planner that fails
-a problem is counted at the budget, so medians and 95th percentiles are over every valid
+Budgets and times are CPU seconds of the planner alone (model building is not timed; the machine
+is shared, so wall seconds would measure the neighbours); a planner that fails a problem is
+counted at the budget, so medians and 95th percentiles are over every valid
 problem. VAMP does not build from PyPI here (its build downloads its dependencies); its figures
 are the published reference timings of ``resources/README.md`` in the vamp-planner 0.6.4
 source distribution (Panda, MotionBenchMaker, RRT-Connect, AMD Ryzen 9 7950X, one core), which
@@ -21,17 +22,20 @@ give the 700 problems together, not per scenario.
 
 from __future__ import annotations
 
+import json
 import statistics
 import sys
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
+from pathlib import Path
 
 import numpy as np
 from mbm_problems import ProblemsUnavailableError, load_problems, problems_directory
 from motion import MotionQuery, Planned, Run, judged, plan_ompl, plan_ours
 
+from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import CollisionChecker, ConfigurationSpace
 from kitchen_tamp.motion.motion_bench_maker import (
@@ -87,9 +91,9 @@ def mbm_case(problem: MbmProblem) -> Iterator[MbmCase]:
 def run_case(case: MbmCase, seed: int, budget_s: float, turn: int) -> dict[str, Run]:
     """Each planner on the case, starting with planner ``turn`` (mod 3); each path judged."""
     planners: dict[str, Callable[[], Planned]] = {
-        PLANNERS[0]: lambda: plan_ours(case.query, case.spheres, seed, budget_s),
-        PLANNERS[1]: lambda: plan_ompl(case.query, case.spheres, budget_s),
-        PLANNERS[2]: lambda: plan_ompl(case.query, case.pybullet, budget_s),
+        PLANNERS[0]: lambda: plan_ours(case.query, case.spheres, seed, budget_s, cpu_budget=True),
+        PLANNERS[1]: lambda: plan_ompl(case.query, case.spheres, budget_s, cpu_budget=True),
+        PLANNERS[2]: lambda: plan_ompl(case.query, case.pybullet, budget_s, cpu_budget=True),
     }
     order = PLANNERS[turn % 3 :] + PLANNERS[: turn % 3]
     return {name: judged(planners[name](), case.query, case.exact, JUDGE_RESOLUTION_RAD) for name in order}
@@ -171,8 +175,33 @@ def format_scenario_table(
     return "\n".join(lines)
 
 
-def run_mbm(scenarios: Sequence[str], count: int, seed: int, budget_s: float) -> int:
-    """Load, plan, judge and print; exit status 2 when the problems cannot be had."""
+def _save(path: Path, results: dict[str, dict[str, list[Run]]], invalid: dict[str, int]) -> None:
+    """The runs as JSON (scenario -> planner -> runs), for ``--from-saved``."""
+    data = {
+        "invalid": invalid,
+        "runs": {s: {n: [asdict(r) for r in runs] for n, runs in by.items()} for s, by in results.items()},
+    }
+    write_atomically(path, json.dumps(data))
+
+
+def table_from_saved(paths: Sequence[Path], budget_s: float) -> int:
+    """One table of runs saved by several ``--save`` runs (scenarios run in parallel processes)."""
+    results: dict[str, dict[str, list[Run]]] = {}
+    invalid: dict[str, int] = {}
+    for path in paths:
+        data = json.loads(path.read_text())
+        invalid.update(data["invalid"])
+        for scenario, by_planner in data["runs"].items():
+            results[scenario] = {name: [Run(**run) for run in runs] for name, runs in by_planner.items()}
+    print(f"MotionBenchMaker Panda, from {', '.join(p.name for p in paths)}")
+    print(format_scenario_table(results, invalid, budget_s))
+    return 0
+
+
+def run_mbm(
+    scenarios: Sequence[str], count: int, seed: int, budget_s: float, save: Path | None = None
+) -> int:
+    """Load, plan, judge and print (and save); exit status 2 when the problems cannot be had."""
     from ompl import util as ou
 
     ou.setLogLevel(ou.LogLevel.LOG_NONE)
@@ -199,4 +228,6 @@ def run_mbm(scenarios: Sequence[str], count: int, seed: int, budget_s: float) ->
         f"seed {seed}, judged by Drake at {JUDGE_RESOLUTION_RAD} rad; {time.perf_counter() - clock:.0f} s"
     )
     print(format_scenario_table(results, invalid, budget_s))
+    if save is not None:
+        _save(save, results, invalid)
     return 0

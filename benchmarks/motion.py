@@ -281,15 +281,19 @@ def judged(planned: Planned, query: MotionQuery, judge: CollisionChecker, resolu
     return Run(joins and free, solve_s, smooth_s, path_length(path), checks)
 
 
-def plan_ours(query: MotionQuery, checker: CollisionChecker, seed: int, time_budget_s: float) -> Planned:
-    """Our RRT-Connect, then our shortcut with what is left of the budget."""
+def plan_ours(
+    query: MotionQuery, checker: CollisionChecker, seed: int, time_budget_s: float, cpu_budget: bool = False
+) -> Planned:
+    """Our RRT-Connect, then our shortcut with what is left of the budget (wall seconds, or with
+    ``cpu_budget`` CPU seconds)."""
+    clock = time.process_time if cpu_budget else time.perf_counter
     cpu = time.process_time()
     planned = plan_rrt_connect(
         query.start,
         query.goal,
         query.space,
         checker,
-        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION),
+        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION, clock=clock),
         seed=seed,
         time_budget_s=time_budget_s,
     )
@@ -299,7 +303,7 @@ def plan_ours(query: MotionQuery, checker: CollisionChecker, seed: int, time_bud
         smoothed = shortcut_path(
             path,
             checker,
-            ShortcutHyperparameters(edge_resolution=EDGE_RESOLUTION),
+            ShortcutHyperparameters(edge_resolution=EDGE_RESOLUTION, clock=clock),
             seed=seed,
             time_budget_s=max(time_budget_s - planned.planning_time_s, 1e-3),
         )
@@ -307,10 +311,13 @@ def plan_ours(query: MotionQuery, checker: CollisionChecker, seed: int, time_bud
     return Planned(path, solve_s, time.process_time() - cpu, checks)
 
 
-def plan_ompl(query: MotionQuery, checker: CollisionChecker, time_budget_s: float) -> Planned:
+def plan_ompl(
+    query: MotionQuery, checker: CollisionChecker, time_budget_s: float, cpu_budget: bool = False
+) -> Planned:
     """OMPL's RRTConnect through SimpleSetup, then simplifySolution() with what is left of the
-    budget (the same simplification as the unlimited default unless time runs out); ``checker``
-    is asked one configuration at a time, as OMPL's state validity checker."""
+    budget (the same simplification as the unlimited default unless time runs out; wall seconds,
+    or with ``cpu_budget`` CPU seconds, through a termination condition); ``checker`` is asked one
+    configuration at a time, as OMPL's state validity checker."""
     from ompl import base as ob
     from ompl import geometric as og
 
@@ -341,11 +348,19 @@ def plan_ompl(query: MotionQuery, checker: CollisionChecker, time_budget_s: floa
     setup.setup()
 
     cpu = time.process_time()
-    setup.solve(time_budget_s)
+    if cpu_budget:
+        deadline = cpu + time_budget_s
+        setup.solve(ob.PlannerTerminationCondition(lambda: time.process_time() >= deadline))
+    else:
+        setup.solve(time_budget_s)
     solve_s, cpu = time.process_time() - cpu, time.process_time()
     path: FloatArray | None = None
     if setup.haveExactSolutionPath():
-        setup.simplifySolution(max(time_budget_s - setup.getLastPlanComputationTime(), 1e-3))
+        if cpu_budget:
+            deadline = max(deadline, cpu + 1e-3)
+            setup.simplifySolution(ob.PlannerTerminationCondition(lambda: time.process_time() >= deadline))
+        else:
+            setup.simplifySolution(max(time_budget_s - setup.getLastPlanComputationTime(), 1e-3))
         solution = setup.getSolutionPath()
         path = np.array(
             [[solution.getState(i)[j] for j in range(dimension)] for i in range(solution.getStateCount())]
@@ -488,15 +503,19 @@ def main(argv: Sequence[str] | None = None) -> int:
         "--scenarios", nargs="+", choices=MBM_SCENARIOS, default=list(MBM_SCENARIOS), help="mbm scenarios"
     )
     parser.add_argument("--problems", type=int, default=100, help="mbm problems per scenario (at most 100)")
+    parser.add_argument("--save", type=Path, help="mbm: also write the runs to this JSON file")
+    parser.add_argument("--from-saved", type=Path, nargs="+", help="mbm: print one table of saved runs")
     args = parser.parse_args(argv)
     if args.checker != "pybullet" and args.query_set != "kitchen":
         parser.error("--checker applies to the kitchen query set only")
     if args.query_set == "mbm":
-        from mbm_motion import run_mbm
+        from mbm_motion import run_mbm, table_from_saved
 
         if not 1 <= args.problems <= 100:
             parser.error("--problems must be between 1 and 100")
-        return run_mbm(args.scenarios, args.problems, args.seed, args.time_budget or 1.0)
+        if args.from_saved:
+            return table_from_saved(args.from_saved, args.time_budget or 1.0)
+        return run_mbm(args.scenarios, args.problems, args.seed, args.time_budget or 1.0, args.save)
     args.time_budget = args.time_budget or 10.0
 
     from ompl import util as ou

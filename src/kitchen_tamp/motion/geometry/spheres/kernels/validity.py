@@ -56,9 +56,6 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import Validit
 FloatArray = npt.NDArray[np.float64]
 
 
-_FAR = 1e300
-"""Larger than any squared gap in metres."""
-
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _boxes_near(
@@ -141,7 +138,6 @@ def valid_configurations(
     group_radii = arrays.group_radii
     group_starts = arrays.group_starts
     group_stops = arrays.group_stops
-    sphere_centers = arrays.sphere_centers
     sphere_radii = arrays.sphere_radii
     group_roots = arrays.group_roots
     node_links = arrays.node_links
@@ -156,8 +152,6 @@ def valid_configurations(
     box_centers = arrays.box_centers
     box_halves = arrays.box_halves
     box_kinds = arrays.box_kinds
-    box_lows = arrays.box_lows
-    box_highs = arrays.box_highs
     table_variables = arrays.table_variables
     table_lows = arrays.table_lows
     table_steps = arrays.table_steps
@@ -165,8 +159,12 @@ def valid_configurations(
     table_offsets = arrays.table_offsets
     table_cells = arrays.table_cells
     table_margin = arrays.table_margin
-    group_box_pairs = arrays.group_box_pairs
     group_pairs = arrays.group_pairs
+    coarse_local = arrays.coarse_local
+    low_x, low_y, low_z = arrays.low_x, arrays.low_y, arrays.low_z
+    high_x, high_y, high_z = arrays.high_x, arrays.high_y, arrays.high_z
+    unchecked = arrays.unchecked
+    group_order = arrays.group_order
     count = qs.shape[0]
     groups, boxes = group_radii.shape[0], box_halves.shape[0]
     clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
@@ -176,7 +174,6 @@ def valid_configurations(
     frame = np.empty((3, 4))
     sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
     group_world = np.empty((groups, 3))
-    coarse_local = np.ascontiguousarray(sphere_centers.T)
     coarse_world = np.empty((3, sphere_radii.shape[0]))
     coarse_placed = np.zeros(groups, dtype=np.int64)
     fine_world = np.empty((3, fine_radii.shape[0]))
@@ -184,21 +181,7 @@ def valid_configurations(
     node_world = np.empty((node_radii.shape[0], 3))
     node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
-    # The box pairs as a dense (group, box) table, row-major: 0 where checked, far off where not,
-    # added to the squared gap of each group's bound to each box's axis-aligned bounds.
-    unchecked = np.full(groups * boxes, _FAR)
-    group_order = np.empty(groups, dtype=np.int64)
-    seen = np.zeros(groups, dtype=np.bool_)
-    ordered = 0
-    for k in range(group_box_pairs.shape[0]):
-        g = group_box_pairs[k, 0]
-        if not seen[g]:
-            seen[g] = True
-            group_order[ordered] = g
-            ordered += 1
-        unchecked[g * boxes + group_box_pairs[k, 1]] = 0.0
-    low_x, low_y, low_z = box_lows[:, 0].copy(), box_lows[:, 1].copy(), box_lows[:, 2].copy()
-    high_x, high_y, high_z = box_highs[:, 0].copy(), box_highs[:, 1].copy(), box_highs[:, 2].copy()
+    ordered = group_order.shape[0]
     tolerance = 1e-9
     tables = table_offsets.shape[0]
     cells = np.empty((2, tables), dtype=np.int64)

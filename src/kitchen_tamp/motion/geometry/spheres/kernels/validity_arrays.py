@@ -78,17 +78,51 @@ class ValidityArrays(structref.StructRefProxy):
     table_margin: float
     group_box_pairs: IntArray
     group_pairs: IntArray
+    # Derived by `validity_arrays` from the fields above, so a call need not (`_derived`):
+    coarse_local: FloatArray
+    low_x: FloatArray
+    low_y: FloatArray
+    low_z: FloatArray
+    high_x: FloatArray
+    high_y: FloatArray
+    high_z: FloatArray
+    unchecked: FloatArray
+    group_order: IntArray
 
 
-VALIDITY_FIELDS = tuple(ValidityArrays.__annotations__)
+ALL_FIELDS = tuple(ValidityArrays.__annotations__)
+VALIDITY_FIELDS = ALL_FIELDS[: ALL_FIELDS.index("coarse_local")]
 """The kernel's arrays by name, in the order `kernel_arguments` lays them out."""
+UNCHECKED = 1e300
+"""Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
 
-structref.define_proxy(ValidityArrays, ValidityArraysType, list(VALIDITY_FIELDS))  # type: ignore[no-untyped-call]
+structref.define_proxy(ValidityArrays, ValidityArraysType, list(ALL_FIELDS))  # type: ignore[no-untyped-call]
+
+
+def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
+    """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
+    pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
+    the groups with a checked box, in the order of their first pair."""
+    lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
+    groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
+    unchecked = np.full(groups * boxes, UNCHECKED)
+    pairs = np.asarray(laid_out["group_box_pairs"]).reshape(-1, 2)
+    unchecked[pairs[:, 0] * boxes + pairs[:, 1]] = 0.0
+    order = list(dict.fromkeys(int(g) for g in pairs[:, 0]))
+    return (
+        np.ascontiguousarray(np.asarray(laid_out["sphere_centers"]).T),
+        *(np.ascontiguousarray(lows[:, axis]) for axis in range(3)),
+        *(np.ascontiguousarray(highs[:, axis]) for axis in range(3)),
+        unchecked,
+        np.array(order, dtype=np.int64),
+    )
 
 
 def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
-    """``arguments`` (in ``VALIDITY_FIELDS`` order) as one `ValidityArrays`."""
+    """``arguments`` (in ``VALIDITY_FIELDS`` order) as one `ValidityArrays`, with the tables the
+    kernel derives from them."""
     if len(arguments) != len(VALIDITY_FIELDS):
         raise ValueError(f"expected {len(VALIDITY_FIELDS)} kernel arrays, got {len(arguments)}")
-    packed: ValidityArrays = ValidityArrays(*arguments)  # type: ignore[no-untyped-call]
+    derived = _derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True)))
+    packed: ValidityArrays = ValidityArrays(*arguments, *derived)  # type: ignore[no-untyped-call]
     return packed
