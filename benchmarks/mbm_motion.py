@@ -43,6 +43,7 @@ from kitchen_tamp.motion.motion_bench_maker import (
     MBM_FINGER_OPENING,
     MBM_PANDA_LOWER,
     MBM_PANDA_UPPER,
+    MbmFormatError,
     MbmProblem,
     mbm_scene,
 )
@@ -208,7 +209,7 @@ def run_mbm(
     ou.RNG.setSeed(seed + 1)
     try:
         problems = load_problems(scenarios, count)
-    except ProblemsUnavailableError as error:
+    except (ProblemsUnavailableError, MbmFormatError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
     results: dict[str, dict[str, list[Run]]] = {s: {name: [] for name in PLANNERS} for s in scenarios}

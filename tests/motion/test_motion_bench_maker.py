@@ -46,6 +46,13 @@ world:
       primitive_poses:
         - position: [0.2, 0.9, 0.22]
           orientation: [0, 0, 0, 1]
+    - id: Wall
+      primitives:
+        - type: box
+          dimensions: [0.08, 0.08, 1.2]
+      primitive_poses:
+        - position: [0.45, 0.25, 0.6]
+          orientation: [0, 0, 0, 1]
     - id: Ball
       primitives:
         - type: sphere
@@ -107,7 +114,7 @@ def test_a_scene_and_request_become_start_goal_obstacles_and_self_pairs() -> Non
     assert problem.name == "table_pick-0007"
     assert np.allclose(problem.start, [0, -0.785, 0, -2.356, 0, 1.571, 0.785])
     assert np.allclose(problem.goals, [[1.2, 0.2, 0.1, -1.9, 0.0, 2.1, 0.8]])
-    can, top, ball = problem.obstacles
+    can, top, _, ball = problem.obstacles
     assert (can.kind, top.kind, ball.kind) == ("cylinder", "box", "sphere")
     assert np.allclose(can.size, [0.03, 0.12])  # MoveIt gives (height, radius)
     assert np.allclose(top.size, [1.2, 0.6, 0.04]) and np.allclose(ball.size, [0.05])
@@ -158,7 +165,7 @@ def test_the_described_scene_writes_every_obstacle_where_the_file_puts_it(tmp_pa
         (
             TABLE_SCENE.replace("type: sphere", "type: cone"),
             TABLE_REQUEST,
-            "scene.yaml: world.collision_objects[2]",
+            "scene.yaml: world.collision_objects[3]",
         ),
         (TABLE_SCENE.replace("dimensions: [0.05]", "dimensions: [0.05, 1]"), TABLE_REQUEST, "expected 1"),
         (
@@ -174,3 +181,23 @@ def test_a_malformed_file_is_named_with_its_key(scene: str, request_text: str, m
     where = {"scene": "scene.yaml", "request": "request.yaml"}
     with pytest.raises(MbmFormatError, match=message.replace("[", r"\[").replace("]", r"\]")):
         read_mbm_problem("table_pick", 1, scene, request_text, where)
+
+
+@pytest.mark.slow
+def test_a_problem_is_planned_with_the_spheres_and_the_path_is_free_for_drake(tmp_path: Path) -> None:
+    from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
+    from kitchen_tamp.motion import ConfigurationSpace, densify_path, plan_rrt_connect, shortcut_path
+    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+
+    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
+    scene = mbm_scene(problem, panda_urdf_path(), tmp_path)
+    spheres, exact = SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
+    space = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)
+    planned = plan_rrt_connect(problem.start, problem.goals[0], space, spheres, seed=3, time_budget_s=30.0)
+    assert planned.path is not None
+    path = shortcut_path(planned.path, spheres, seed=3).path
+    assert np.allclose(path[0], problem.start) and np.allclose(path[-1], problem.goals[0])
+    assert np.all(exact.is_valid(densify_path(path, JUDGE_RESOLUTION_RAD)))
+    straight = densify_path(np.stack([problem.start, problem.goals[0]]), 0.01)
+    assert not np.all(exact.is_valid(straight))  # the wall makes it a detour

@@ -94,6 +94,7 @@ def _near_contact(exact: DrakeCollisionChecker, qs: np.ndarray) -> np.ndarray:
     return np.concatenate([free, colliding])
 
 
+@pytest.mark.slow
 def test_no_configuration_drake_finds_colliding_is_free_for_the_spheres(
     models: tuple[SphereCollisionChecker, DrakeCollisionChecker],
 ) -> None:
@@ -144,6 +145,7 @@ class _RowsOnly:
         raise NotImplementedError
 
 
+@pytest.mark.slow
 def test_compiled_segments_check_what_the_batches_check_and_count_alike(
     models: tuple[SphereCollisionChecker, DrakeCollisionChecker],
 ) -> None:
