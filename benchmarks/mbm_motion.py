@@ -23,6 +23,7 @@ give the 700 problems together, not per scenario.
 from __future__ import annotations
 
 import json
+import math
 import statistics
 import sys
 import time
@@ -167,6 +168,13 @@ def format_scenario_table(
             f"{_us(summary.solve_median_s):>11}{_us(summary.solve_p95_s):>11}"
             f"{_us(summary.total_median_s):>11}{summary.length_median:>8.2f}"
         )
+    rejected = {
+        name: sum(not r.solved and not math.isnan(r.path_length) for r in runs)
+        for name, runs in everything.items()
+    }
+    lines.append(
+        "paths returned but found colliding by Drake: " + ", ".join(f"{n} {k}" for n, k in rejected.items())
+    )
     published = VAMP_PUBLISHED_US
     lines.append(
         f"{'all':<17}{'VAMP (published)':<24}{699:>6}{1.0:>9.1%}{published['solve median']:>11,.0f}"
