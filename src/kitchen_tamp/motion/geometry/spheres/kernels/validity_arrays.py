@@ -2,14 +2,15 @@
 
 `sphere_kernel_layout.kernel_arguments` lays the arrays out as a tuple in ``VALIDITY_FIELDS``
 order; `validity_arrays` packs such a tuple into a `ValidityArrays`, which
-`sphere_kernels.valid_configurations` takes as one argument and unpacks once per call.
+`sphere_kernels.valid_configurations` takes as one argument and unpacks once per call; the
+tables the kernel once derived in every call from the arrays (``_derived``) are packed with them.
 
 Why a structref: a compiled call pays for typing and unboxing each argument. Measured with a
-trivial body (``python benchmarks/collision.py --dispatch``, best of five, per call): 42 arrays
-passed positionally 4.8 us, one plain tuple of them 7.4 us, a named tuple 11.1 us, a jitclass
-1.3 us and a structref 1.9 us, against 0.3 us for two arguments. A jitclass's type is new in
-every process, so numba cannot cache a kernel that takes one (it would compile for a minute in
-every run); a structref's type is cached.
+trivial body (``python benchmarks/collision.py --dispatch``, CPU, best of five, two runs): 42
+arrays passed positionally 2.4-2.8 us a call, one plain tuple of them 3.5-3.9 us, a named tuple
+4.9-6.9 us, a jitclass 0.55-1.0 us and a structref 1.0-1.5 us, against 0.18 us for two
+arguments. A jitclass's type is new in every process, so numba cannot cache a kernel that takes
+one (it would compile for a minute in every run); a structref's type is cached.
 """
 
 from __future__ import annotations
