@@ -10,6 +10,7 @@ model's distance queries (for trajectory optimisation) are timed too.
     .venv/bin/python benchmarks/collision.py
     .venv/bin/python benchmarks/collision.py --configurations 5000 --seed 1
     .venv/bin/python benchmarks/collision.py --sphere-samples 100000   # sphere model vs PyBullet
+    .venv/bin/python benchmarks/collision.py --dispatch   # what a call into the sphere kernel costs
 
 With ``--sphere-samples N`` it instead checks the sphere model
 (`kitchen_tamp.motion.geometry.spheres.checker`) against PyBullet, free-handed and
@@ -19,6 +20,7 @@ colliding sample). Missed collisions (PyBullet colliding, spheres free) must be
 zero; false positives (PyBullet free, spheres colliding) are reported as a
 fraction of PyBullet's free configurations. Distance queries of the sphere model
 (every pair with gradients) and Drake's (the minimum with its gradient) are timed.
+With ``--dispatch`` it times calls into the sphere model's compiled kernel (``kernel_dispatch``).
 """
 
 from __future__ import annotations
@@ -189,10 +191,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--configurations", type=int, default=2000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--sphere-samples", type=int, default=0, metavar="N")
+    parser.add_argument("--dispatch", action="store_true", help="time calls into the sphere kernel")
     args = parser.parse_args(argv)
 
     _, kitchen = load_kitchen_problem(PROBLEM)
     with kitchen:
+        if args.dispatch:
+            from kernel_dispatch import dispatch_report
+
+            from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+
+            description = describe_collision_checker(kitchen.collision_checker())
+            print(dispatch_report(SphereCollisionChecker(description, margin=0.002), args.seed))
+            return 0
         if args.sphere_samples:
             sphere_agreement(kitchen, args.sphere_samples, args.seed)
             return 0

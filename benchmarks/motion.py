@@ -43,6 +43,7 @@ from kitchen_tamp.motion import (
     plan_rrt_connect,
     shortcut_path,
 )
+from kitchen_tamp.motion.motion_bench_maker import MBM_SCENARIOS
 
 EDGE_RESOLUTION = 0.01
 """Joint-space distance (rad) between checked configurations, for both planners."""
@@ -257,24 +258,42 @@ class Run:
         return self.solve_cpu_s + self.smooth_cpu_s
 
 
-def _run(path: FloatArray | None, query: MotionQuery, solve_s: float, smooth_s: float, checks: int) -> Run:
-    """The run, solved only if the path joins start and goal and is free when re-checked densely."""
+@dataclass(frozen=True, eq=False)
+class Planned:
+    """What a planner returned (a path or None) and what it cost: CPU seconds of planning and of
+    smoothing, and configurations checked."""
+
+    path: FloatArray | None
+    solve_cpu_s: float
+    smooth_cpu_s: float
+    collision_checks: int
+
+
+def judged(planned: Planned, query: MotionQuery, judge: CollisionChecker, resolution: float) -> Run:
+    """The run, solved only if the path joins start and goal and ``judge`` finds it free at
+    configurations ``resolution`` apart."""
+    path, checks = planned.path, planned.collision_checks
+    solve_s, smooth_s = planned.solve_cpu_s, planned.smooth_cpu_s
     if path is None:
         return Run(False, solve_s, smooth_s, float("nan"), checks)
     joins = np.allclose(path[0], query.start) and np.allclose(path[-1], query.goal)
-    free = bool(np.all(query.judging_checker.is_valid(densify_path(path, EDGE_RESOLUTION))))
+    free = bool(np.all(judge.is_valid(densify_path(path, resolution))))
     return Run(joins and free, solve_s, smooth_s, path_length(path), checks)
 
 
-def run_ours(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
-    """Our RRT-Connect, then our shortcut with what is left of the budget."""
+def plan_ours(
+    query: MotionQuery, checker: CollisionChecker, seed: int, time_budget_s: float, cpu_budget: bool = False
+) -> Planned:
+    """Our RRT-Connect, then our shortcut with what is left of the budget (wall seconds, or with
+    ``cpu_budget`` CPU seconds)."""
+    clock = time.process_time if cpu_budget else time.perf_counter
     cpu = time.process_time()
     planned = plan_rrt_connect(
         query.start,
         query.goal,
         query.space,
-        query.checker,
-        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION),
+        checker,
+        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION, clock=clock),
         seed=seed,
         time_budget_s=time_budget_s,
     )
@@ -283,18 +302,22 @@ def run_ours(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
     if path is not None:
         smoothed = shortcut_path(
             path,
-            query.checker,
-            ShortcutHyperparameters(edge_resolution=EDGE_RESOLUTION),
+            checker,
+            ShortcutHyperparameters(edge_resolution=EDGE_RESOLUTION, clock=clock),
             seed=seed,
             time_budget_s=max(time_budget_s - planned.planning_time_s, 1e-3),
         )
         path, checks = smoothed.path, checks + smoothed.collision_checks
-    return _run(path, query, solve_s, time.process_time() - cpu, checks)
+    return Planned(path, solve_s, time.process_time() - cpu, checks)
 
 
-def run_ompl(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
+def plan_ompl(
+    query: MotionQuery, checker: CollisionChecker, time_budget_s: float, cpu_budget: bool = False
+) -> Planned:
     """OMPL's RRTConnect through SimpleSetup, then simplifySolution() with what is left of the
-    budget (the same simplification as the unlimited default unless time runs out)."""
+    budget (the same simplification as the unlimited default unless time runs out; wall seconds,
+    or with ``cpu_budget`` CPU seconds, through a termination condition); ``checker`` is asked one
+    configuration at a time, as OMPL's state validity checker."""
     from ompl import base as ob
     from ompl import geometric as og
 
@@ -312,7 +335,7 @@ def run_ompl(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
         nonlocal checks
         checks += 1
         q = np.array([state[joint] for joint in range(dimension)])  # type: ignore[index]
-        return bool(query.judging_checker.is_valid(q[np.newaxis])[0])
+        return bool(checker.is_valid(q[np.newaxis])[0])
 
     setup.setStateValidityChecker(is_state_valid)
     information = setup.getSpaceInformation()
@@ -325,16 +348,36 @@ def run_ompl(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
     setup.setup()
 
     cpu = time.process_time()
-    setup.solve(time_budget_s)
+    if cpu_budget:
+        deadline = cpu + time_budget_s
+        setup.solve(ob.PlannerTerminationCondition(lambda: time.process_time() >= deadline))
+    else:
+        setup.solve(time_budget_s)
     solve_s, cpu = time.process_time() - cpu, time.process_time()
     path: FloatArray | None = None
     if setup.haveExactSolutionPath():
-        setup.simplifySolution(max(time_budget_s - setup.getLastPlanComputationTime(), 1e-3))
+        if cpu_budget:
+            deadline = max(deadline, cpu + 1e-3)
+            setup.simplifySolution(ob.PlannerTerminationCondition(lambda: time.process_time() >= deadline))
+        else:
+            setup.simplifySolution(max(time_budget_s - setup.getLastPlanComputationTime(), 1e-3))
         solution = setup.getSolutionPath()
         path = np.array(
             [[solution.getState(i)[j] for j in range(dimension)] for i in range(solution.getStateCount())]
         )
-    return _run(path, query, solve_s, time.process_time() - cpu, checks)
+    return Planned(path, solve_s, time.process_time() - cpu, checks)
+
+
+def run_ours(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
+    """Our planner with the query's checker, judged by its judging checker."""
+    planned = plan_ours(query, query.checker, seed, time_budget_s)
+    return judged(planned, query, query.judging_checker, EDGE_RESOLUTION)
+
+
+def run_ompl(query: MotionQuery, seed: int, time_budget_s: float) -> Run:
+    """OMPL with the query's judging checker, judged by it."""
+    planned = plan_ompl(query, query.judging_checker, time_budget_s)
+    return judged(planned, query, query.judging_checker, EDGE_RESOLUTION)
 
 
 RUNNERS: dict[str, Callable[[MotionQuery, int, float], Run]] = {
@@ -447,16 +490,33 @@ def format_batch_throughput(queries: Sequence[MotionQuery], seed: int) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--query-set", choices=sorted(QUERY_SETS), default="planar_arm")
+    parser.add_argument("--query-set", choices=[*sorted(QUERY_SETS), "mbm"], default="planar_arm")
     parser.add_argument("--queries", type=int, default=20)
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--time-budget", type=float, default=10.0, help="seconds per query, plan + smooth")
+    parser.add_argument(
+        "--time-budget", type=float, help="seconds per query, plan + smooth (default 10; mbm: 1)"
+    )
     parser.add_argument(
         "--checker", choices=CHECKER_BACKENDS, default="pybullet", help="collision model of the kitchen set"
     )
+    parser.add_argument(
+        "--scenarios", nargs="+", choices=MBM_SCENARIOS, default=list(MBM_SCENARIOS), help="mbm scenarios"
+    )
+    parser.add_argument("--problems", type=int, default=100, help="mbm problems per scenario (at most 100)")
+    parser.add_argument("--save", type=Path, help="mbm: also write the runs to this JSON file")
+    parser.add_argument("--from-saved", type=Path, nargs="+", help="mbm: print one table of saved runs")
     args = parser.parse_args(argv)
     if args.checker != "pybullet" and args.query_set != "kitchen":
         parser.error("--checker applies to the kitchen query set only")
+    if args.query_set == "mbm":
+        from mbm_motion import run_mbm, table_from_saved
+
+        if not 1 <= args.problems <= 100:
+            parser.error("--problems must be between 1 and 100")
+        if args.from_saved:
+            return table_from_saved(args.from_saved, args.time_budget or 1.0)
+        return run_mbm(args.scenarios, args.problems, args.seed, args.time_budget or 1.0, args.save)
+    args.time_budget = args.time_budget or 10.0
 
     from ompl import util as ou
 

@@ -14,6 +14,7 @@ from kitchen_tamp.kitchen import KitchenScene, sample_targets
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_arrays
 from kitchen_tamp.motion.geometry.spheres.pair_tables import PairTables, pair_tables
 from kitchen_tamp.world.scene_description import describe_collision_checker
 
@@ -70,7 +71,8 @@ def test_settled_cells_hold_at_their_corners(checkers: list[SphereCollisionCheck
                 corner = cell + rng.integers(0, 2, size=cell.shape) * (1.0 - 1e-9)
                 qs = rng.uniform(checker.lower, checker.upper, size=(len(chosen), 7))
                 qs[:, tables.variables[t]] = tables.lows[t] + corner * tables.steps[t]
-                alone = KERNEL(qs, *shared, np.zeros((0, 2), dtype=np.int64), pair, checker.margin)
+                alone_arrays = validity_arrays((*shared, np.zeros((0, 2), dtype=np.int64), pair))
+                alone = KERNEL(qs, alone_arrays, checker.margin, False)
                 assert np.all(alone == (state > 0)), (checker.model.groups[h].name, state)
 
 
@@ -81,7 +83,7 @@ def test_tables_change_no_verdict(checkers: list[SphereCollisionChecker]) -> Non
         qs = rng.uniform(checker.lower - 0.02, checker.upper + 0.02, size=(20000, 7))
         for margin in (checker.margin, checker.margin + 0.002, checker.margin - 0.002):
             with_tables = checker.with_margin(margin).is_valid(qs)
-            without = KERNEL(qs, *plain, margin)
+            without = KERNEL(qs, validity_arrays(plain), margin, False)
             assert with_tables.tolist() == without.tolist()
         untabled = copy.copy(checker)
         untabled._kernel_arguments = plain

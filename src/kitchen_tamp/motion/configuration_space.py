@@ -70,3 +70,21 @@ class ConfigurationSpace:
                 f"[{self.lower[outside].tolist()}, {self.upper[outside].tolist()}]"
             )
         return array
+
+
+class UniformSamples:
+    """Uniform samples of a space drawn from ``rng`` a block at a time: the same values in the same
+    order as drawing them one by one (numpy fills a block row by row), for one numpy call a block."""
+
+    def __init__(self, space: ConfigurationSpace, rng: np.random.Generator, block: int = 64) -> None:
+        self._space, self._rng, self._block = space, rng, block
+        self._drawn = np.empty((0, space.dimension))
+        self._next = 0
+
+    def next(self) -> JointConfiguration:
+        """The next sample (a fresh array)."""
+        if self._next == len(self._drawn):
+            self._drawn, self._next = self._space.sample_uniform(self._rng, self._block), 0
+        self._next += 1
+        sample: JointConfiguration = self._drawn[self._next - 1].copy()
+        return sample

@@ -16,7 +16,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from kitchen_tamp.joint_spacing import interior_fractions
+from kitchen_tamp.joint_spacing import interior_fractions, interval_count
 from kitchen_tamp.motion.collision_checker import (
     CollisionChecker,
     JointConfiguration,
@@ -47,6 +47,29 @@ class FirstCollisionFinder(Protocol):
         ...
 
 
+@runtime_checkable
+class CompiledSegments(Protocol):
+    """A checker that checks a whole segment in one call (a compiled model): the configurations
+    `CountingSegmentChecker` would check, in its order, with its verdict and its count."""
+
+    def segment_checked(
+        self,
+        q0: JointConfiguration,
+        q1: JointConfiguration,
+        intervals: int,
+        check_start: bool,
+        check_end: bool,
+    ) -> tuple[bool, int]:
+        """(whether q0 -> q1 cut into ``intervals`` is valid, configurations counted)."""
+        ...
+
+    def free_prefix_checked(
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+    ) -> tuple[float, int]:
+        """(the free length from q0 toward q1, configurations counted)."""
+        ...
+
+
 class CountingSegmentChecker:
     """Wraps a `CollisionChecker`: segment checks at a resolution, and a count of checks."""
 
@@ -57,6 +80,7 @@ class CountingSegmentChecker:
         self.resolution = resolution
         self.configurations_checked = 0
         self._finder = checker if isinstance(checker, FirstCollisionFinder) else None
+        self._compiled = checker if isinstance(checker, CompiledSegments) else None
 
     def are_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Check a batch of configurations, shape (n, d), counting each."""
@@ -90,9 +114,14 @@ class CountingSegmentChecker:
         vouches for with `check_start=False` / `check_end=False`.
         """
         endpoints = [q for q, check in ((q0, check_start), (q1, check_end)) if check]
+        if self._compiled is not None:
+            intervals = interval_count(q0, q1, self.resolution)
+            free, checked = self._compiled.segment_checked(q0, q1, intervals, check_start, check_end)
+            self.configurations_checked += checked
+            return free
+        fractions = interior_fractions(q0, q1, self.resolution)
         if endpoints and self.first_invalid(np.stack(endpoints)) is not None:
             return False
-        fractions = interior_fractions(q0, q1, self.resolution)
         for batch in _batches(len(fractions)):
             qs = q0 + fractions[batch, np.newaxis] * (q1 - q0)
             if self.first_invalid(qs) is not None:
@@ -111,6 +140,10 @@ class CountingSegmentChecker:
         distance = float(np.linalg.norm(q1 - q0))
         if distance == 0.0:
             return 0.0
+        if self._compiled is not None:
+            length, checked = self._compiled.free_prefix_checked(q0, q1, distance, self.resolution)
+            self.configurations_checked += checked
+            return length
         lengths = np.append(np.arange(1, math.ceil(distance / self.resolution)), distance / self.resolution)
         lengths *= self.resolution
         for batch in _batches(len(lengths)):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,7 +12,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
-from kitchen_tamp.motion.configuration_space import ConfigurationSpace
+from kitchen_tamp.motion.configuration_space import ConfigurationSpace, UniformSamples
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.planning_result import (
     PlanningResult,
@@ -30,6 +31,8 @@ class RrtConnectHyperparameters:
     step_size: float = 1.0
     edge_resolution: float = PLANNING_RESOLUTION_RAD
     max_iterations: int = 10_000
+    clock: Callable[[], float] = time.perf_counter
+    """What the time budget is measured on: wall seconds; ``time.process_time`` for CPU seconds."""
 
     def __post_init__(self) -> None:
         if self.step_size <= 0.0:
@@ -118,11 +121,12 @@ def plan_rrt_connect(
     start/goal; a start or goal in collision is reported by the result's status.
     """
     params = hyperparameters or RrtConnectHyperparameters()
-    clock_start = time.perf_counter()
+    clock = params.clock
+    clock_start = clock()
     deadline = clock_start + time_budget_s
     q_start = space.validated(start, "start")
     q_goal = space.validated(goal, "goal")
-    rng = np.random.default_rng(seed)
+    samples = UniformSamples(space, np.random.default_rng(seed))
     segments = CountingSegmentChecker(checker, params.edge_resolution)
     start_tree, goal_tree = ConfigurationTree(q_start), ConfigurationTree(q_goal)
 
@@ -133,7 +137,7 @@ def plan_rrt_connect(
             iterations=iterations,
             nodes=len(start_tree) + len(goal_tree),
             collision_checks=segments.configurations_checked,
-            planning_time_s=time.perf_counter() - clock_start,
+            planning_time_s=clock() - clock_start,
         )
 
     endpoint_status = endpoint_collision_status(segments, q_start, q_goal)
@@ -144,9 +148,9 @@ def plan_rrt_connect(
 
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
-        if time.perf_counter() >= deadline:
+        if clock() >= deadline:
             return finish(PlanStatus.TIME_LIMIT, iteration - 1)
-        target = space.sample_uniform(rng, 1)[0]
+        target = samples.next()
         new = extend_tree(growing, target, segments, params.step_size)
         if new is not None:
             end, reached = connect_tree(other, growing.node(new), segments, params.step_size)

@@ -32,7 +32,9 @@ from kitchen_tamp.motion.geometry.spheres.distances import (
     pair_distances_and_gradients,
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments, with_pair_tables
+from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked, segment_checked
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays, validity_arrays
 from kitchen_tamp.motion.geometry.spheres.pair_tables import pair_tables
 from kitchen_tamp.motion.geometry.spheres.reference import reference_validity
 from kitchen_tamp.motion.geometry.spheres.scene import PYBULLET_MESH_MARGIN, SphereScene
@@ -43,6 +45,8 @@ FloatArray = npt.NDArray[np.float64]
 
 _VALID_CONFIGURATIONS: Any = valid_configurations
 """The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
+_SEGMENT_CHECKED: Any = segment_checked
+_FREE_PREFIX_CHECKED: Any = free_prefix_checked
 
 
 class SphereCollisionChecker:
@@ -69,6 +73,7 @@ class SphereCollisionChecker:
         self.segment_resolution = float(segment_resolution)
         self._segments = CountingSegmentChecker(self, segment_resolution)
         self._kernel_arguments = self._arrays()
+        self._arrays_packed = validity_arrays(self._kernel_arguments)
         self.padding = self._padding_per_group(scene, mesh_padding)
         """(groups,) how much each group's spheres were padded beyond its collision hulls (m): the mesh
         margin PyBullet adds and a model of the bare hulls (Drake's) does not."""
@@ -105,7 +110,41 @@ class SphereCollisionChecker:
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""
         batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
-        return np.asarray(_VALID_CONFIGURATIONS(batch, *self._kernel_arguments, self.margin), dtype=np.bool_)
+        valid = _VALID_CONFIGURATIONS(batch, self._arrays_packed, self.margin, False)
+        return np.asarray(valid, dtype=np.bool_)
+
+    def first_invalid(self, qs: JointConfigurations) -> int | None:
+        """Index of the first row of ``qs`` (n, 7) that is not valid, or None; the rows after it
+        are not checked (a `FirstCollisionFinder`)."""
+        batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
+        if len(batch) == 0:
+            return None
+        valid = _VALID_CONFIGURATIONS(batch, self._arrays_packed, self.margin, True)
+        first = int(np.argmin(valid))
+        return None if valid[first] else first
+
+    def segment_checked(
+        self,
+        q0: JointConfiguration,
+        q1: JointConfiguration,
+        intervals: int,
+        check_start: bool,
+        check_end: bool,
+    ) -> tuple[bool, int]:
+        """`CompiledSegments.segment_checked` in one compiled call (`sphere_segments`)."""
+        start, end = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(q1, dtype=float)
+        arrays, margin = self._arrays_packed, self.margin
+        free, checked = _SEGMENT_CHECKED(start, end, intervals, check_start, check_end, arrays, margin)
+        return bool(free), int(checked)
+
+    def free_prefix_checked(
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+    ) -> tuple[float, int]:
+        """`CompiledSegments.free_prefix_checked` in one compiled call (`sphere_segments`)."""
+        start, end = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(q1, dtype=float)
+        arrays, margin = self._arrays_packed, self.margin
+        length, checked = _FREE_PREFIX_CHECKED(start, end, distance, resolution, arrays, margin)
+        return float(length), int(checked)
 
     def is_valid_without_padding(self, qs: JointConfigurations) -> ValidityMask:
         """``is_valid`` with each pair's margin lowered by its groups' padding: the verdict of the
@@ -118,10 +157,10 @@ class SphereCollisionChecker:
             rows = np.flatnonzero(valid)
             if len(rows) == 0:
                 break
-            valid[rows] = _VALID_CONFIGURATIONS(batch[rows], *arguments, self.margin - offset)
+            valid[rows] = _VALID_CONFIGURATIONS(batch[rows], arguments, self.margin - offset, False)
         return valid
 
-    def _unpadded_passes(self) -> list[tuple[float, tuple[Any, ...]]]:
+    def _unpadded_passes(self) -> list[tuple[float, ValidityArrays]]:
         """Kernel arguments per margin offset, each with the pairs whose padding sums to it."""
         *shared, box_pairs, group_pairs = self._kernel_arguments
         box_offsets = self.padding[box_pairs[:, 0]]
@@ -130,7 +169,7 @@ class SphereCollisionChecker:
         for offset in sorted(set(box_offsets.tolist()) | set(pair_offsets.tolist())):
             boxes = np.ascontiguousarray(box_pairs[box_offsets == offset])
             groups = np.ascontiguousarray(group_pairs[pair_offsets == offset])
-            passes.append((offset, (*shared, boxes, groups)))
+            passes.append((offset, validity_arrays((*shared, boxes, groups))))
         return passes
 
     def is_valid_uncompiled(self, qs: JointConfigurations) -> ValidityMask:

@@ -34,6 +34,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_arrays
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene, sphere_cache_directory
 
 FloatArray = npt.NDArray[np.float64]
@@ -183,10 +184,15 @@ def _prove_cells(
     return np.asarray(
         _KERNEL(
             np.ascontiguousarray(qs),
-            *shared,
-            np.zeros((0, 2), dtype=np.int64),
-            np.concatenate([pair, [-1]]).reshape(1, 3).astype(np.int64),
+            validity_arrays(
+                (
+                    *shared,
+                    np.zeros((0, 2), dtype=np.int64),
+                    np.concatenate([pair, [-1]]).reshape(1, 3).astype(np.int64),
+                )
+            ),
             raised_margin,
+            False,
         ),
         dtype=np.bool_,
     )

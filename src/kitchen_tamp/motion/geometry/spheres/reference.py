@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import SHAPE_CYLINDER, SHAPE_SPHERE
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 
 FloatArray = npt.NDArray[np.float64]
@@ -24,9 +25,18 @@ def _world(link_poses: FloatArray, links: npt.NDArray[np.intp], centers: FloatAr
     return rotated + poses[:, :, :3, 3]
 
 
-def _box_gaps(points: FloatArray, rotation: FloatArray, center: FloatArray, half: FloatArray) -> FloatArray:
-    """(M, S) signed distances from points (M, S, 3) to an oriented box (negative inside)."""
+def _box_gaps(
+    points: FloatArray, rotation: FloatArray, center: FloatArray, half: FloatArray, kind: int
+) -> FloatArray:
+    """(M, S) signed distances from points (M, S, 3) to an obstacle (negative inside): an oriented
+    box, a sphere or a cylinder (``kind``, `ObstacleBoxes.kinds`)."""
+    if kind == SHAPE_SPHERE:
+        sphere_gaps: FloatArray = np.linalg.norm(points - center, axis=-1) - half[0]
+        return sphere_gaps
     local = (points - center) @ rotation
+    if kind == SHAPE_CYLINDER:
+        local = np.stack([np.linalg.norm(local[..., :2], axis=-1), local[..., 2]], axis=-1)
+        half = half[[0, 2]]
     excess = np.abs(local) - half
     outside = np.linalg.norm(np.maximum(excess, 0.0), axis=-1)
     gaps: FloatArray = np.where(np.any(excess > 0.0, axis=-1), outside, np.max(excess, axis=-1))
@@ -48,7 +58,9 @@ def reference_validity(
         hit = np.ones(len(batch), dtype=bool)
         for world, radii, field in levels:
             members = getattr(scene.groups[g], field)
-            gaps = _box_gaps(world[:, members], boxes.rotations[b], boxes.centers[b], boxes.half_extents[b])
+            gaps = _box_gaps(
+                world[:, members], boxes.rotations[b], boxes.centers[b], boxes.half_extents[b], boxes.kinds[b]
+            )
             hit &= np.any(gaps - radii[members] < margin, axis=1)
         valid &= ~hit
     for g, h in scene.group_pairs:

@@ -13,13 +13,16 @@ held joints (the fingers' opening, the drawer) where the description has them.
   ``fine_centers``: a few millimetres), which the validity kernel opens only
   where the coarse one cannot clear a pair.
 - Carried bodies: their shapes covered by spheres (both levels), riding on the parent link.
-- Other bodies: one oriented box per collision shape (boxes exactly; spheres,
-  cylinders and meshes by their bounding boxes, which cover them).
+- Other bodies: one obstacle shape per collision shape, kept as an oriented box with a kind:
+  boxes, spheres and cylinders exactly (a sphere's box is its bounding cube, a cylinder's its
+  bounding box along its axis, so code that reads every shape as its box stays conservative);
+  meshes by their bounding boxes, which cover them.
 
 Checked pairs follow the description (the same policy as the PyBullet and
 Drake checkers): links the arm moves against every obstacle shape except the
 allowed contacts; carried shapes against every obstacle and the robot's
-non-gripper links; robot links with at least two moving joints between them.
+non-gripper links; robot links with at least two moving joints between them that the
+description lists.
 """
 
 from __future__ import annotations
@@ -44,6 +47,7 @@ from kitchen_tamp.motion.geometry.spheres.covering import (
     cover_with_spheres,
     mesh_hull_polytope,
 )
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import SHAPE_BOX, SHAPE_KINDS
 from kitchen_tamp.motion.geometry.spheres.kinematics import KinematicTree
 from kitchen_tamp.motion.geometry.spheres.tight_covering import TIGHT_COVERING_TOLERANCE, cover_tightly
 from kitchen_tamp.motion.geometry.urdf import UrdfCollision, read_urdf
@@ -147,13 +151,16 @@ class SphereGroup:
 
 @dataclass(frozen=True, eq=False)
 class ObstacleBoxes:
-    """Oriented boxes: rotations (B, 3, 3) world_from_box, centres (B, 3), half extents (B, 3),
-    and the (body, link) each belongs to."""
+    """Obstacle shapes as oriented boxes: rotations (B, 3, 3) world_from_box, centres (B, 3),
+    half extents (B, 3), the (body, link) each belongs to, and each shape's kind (B,)
+    (`SHAPE_BOX`; `SHAPE_SPHERE`, half extents its radius thrice; `SHAPE_CYLINDER`, half extents
+    radius, radius and half its length, its axis the box's z)."""
 
     rotations: FloatArray
     centers: FloatArray
     half_extents: FloatArray
     owners: tuple[tuple[str, str], ...]
+    kinds: npt.NDArray[np.int64]
 
 
 def _riding_links(groups: list[SphereGroup], fine: bool) -> IndexArray:
@@ -244,7 +251,7 @@ class SphereScene:
 
     @staticmethod
     def _obstacle_boxes(scene: DescribedScene, carried: set[str]) -> ObstacleBoxes:
-        poses, halves, owners = [], [], []
+        poses, halves, owners, kinds = [], [], [], []
         world_from: dict[str, FloatArray] = {}
         for body in scene.bodies:
             if body.name == scene.robot or body.name in carried:
@@ -258,8 +265,13 @@ class SphereScene:
             world_from[body.name] = link_poses[0]
             for shape in model.collisions:
                 vertices = shape_polytope(shape).vertices
+                kinds.append(SHAPE_KINDS.get(shape.kind, SHAPE_BOX))
                 if shape.kind == "box":
                     local_pose, half = shape.origin, shape.size / 2.0
+                elif shape.kind == "sphere":
+                    local_pose, half = shape.origin, np.full(3, shape.size[0])
+                elif shape.kind == "cylinder":
+                    local_pose, half = shape.origin, shape.size[[0, 0, 1]] * [1.0, 1.0, 0.5]
                 else:
                     local_pose = np.eye(4)
                     local_pose[:3, 3] = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
@@ -273,16 +285,19 @@ class SphereScene:
             stacked[:, :3, 3].copy(),
             np.array(halves).reshape(-1, 3),
             tuple(owners),
+            np.array(kinds, dtype=np.int64),
         )
 
     def _checked_pairs(self, scene: DescribedScene) -> tuple[IndexArray, IndexArray]:
         """(group, box) pairs and (group, group) pairs that are checked."""
         tree_model = self.tree.model
         # The robot's side of the described pair table (kitchen_tamp.world.checked_pairs); an
-        # intended contact's pair is kept too (spheres then defer it to the exact model).
+        # intended contact's pair is kept too (spheres then defer it to the exact model). A self
+        # pair is checked when the description lists it and two moving joints part its links.
         pairs = scene.checked_pairs
         robot_pairs = {(p.link_a, p.body_b, p.link_b) for p in pairs if p.body_a == scene.robot}
         robot_pairs |= {(p.link_b, p.body_a, p.link_a) for p in pairs if p.body_b == scene.robot}
+        robot = scene.robot
         box_pairs, group_pairs = [], []
         for g, group in enumerate(self.groups):
             for b, (body, link) in enumerate(self.boxes.owners):
@@ -297,7 +312,10 @@ class SphereScene:
                     robot_side = other if group.role == "carried" else group
                     if robot_side.role != "carried" and not robot_side.gripper:
                         group_pairs.append((g, h))
-                elif tree_model.moving_joints_between(group.link, other.link) >= 2:
+                elif (
+                    tree_model.moving_joints_between(group.link, other.link) >= 2
+                    and (group.link, robot, other.link) in robot_pairs
+                ):
                     group_pairs.append((g, h))
         return np.array(box_pairs, dtype=np.intp).reshape(-1, 2), np.array(
             group_pairs, dtype=np.intp

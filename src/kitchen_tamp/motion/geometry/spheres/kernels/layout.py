@@ -207,6 +207,7 @@ def kernel_arguments(scene: SphereScene, lower: FloatArray, upper: FloatArray) -
         np.ascontiguousarray(boxes.rotations),
         np.ascontiguousarray(boxes.centers),
         np.ascontiguousarray(boxes.half_extents),
+        np.ascontiguousarray(boxes.kinds),
         boxes.centers - reach,
         boxes.centers + reach,
         *tables.kernel_arguments(),

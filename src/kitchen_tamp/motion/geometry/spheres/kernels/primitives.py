@@ -25,6 +25,10 @@ from numba.extending import intrinsic
 FloatArray = npt.NDArray[np.float64]
 
 FIXED, REVOLUTE, PRISMATIC = 0, 1, 2
+SHAPE_BOX, SHAPE_SPHERE, SHAPE_CYLINDER = 0, 1, 2
+"""Obstacle kinds (`sphere_scene.ObstacleBoxes.kinds`): their half extents are a box's, a sphere's
+radius thrice, a cylinder's radius twice and half its length (axis z)."""
+SHAPE_KINDS = {"box": SHAPE_BOX, "sphere": SHAPE_SPHERE, "cylinder": SHAPE_CYLINDER}
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
@@ -237,33 +241,50 @@ def place_point(poses: FloatArray, link: int, local: FloatArray, index: int, wor
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def box_gap_at(
-    x: float, y: float, z: float, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
+    x: float,
+    y: float,
+    z: float,
+    rotations: FloatArray,
+    centers: FloatArray,
+    halves: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    b: int,
 ) -> float:
-    """Signed distance from the point (x, y, z) to box ``b`` (negative inside)."""
-    outside = 0.0
-    deepest = -1e300
-    for axis in range(3):
-        local = (
-            rotations[b, 0, axis] * (x - centers[b, 0])
-            + rotations[b, 1, axis] * (y - centers[b, 1])
-            + rotations[b, 2, axis] * (z - centers[b, 2])
-        )
-        excess = abs(local) - halves[b, axis]
-        if excess > 0.0:
-            outside += excess * excess
-        if excess > deepest:
-            deepest = excess
-    if outside > 0.0:
-        return float(np.sqrt(outside))
-    return float(deepest)
+    """Signed distance from the point (x, y, z) to obstacle ``b`` (negative inside), exact for a
+    box, a sphere and a cylinder (``kinds``)."""
+    dx, dy, dz = x - centers[b, 0], y - centers[b, 1], z - centers[b, 2]
+    kind = kinds[b]
+    if kind == SHAPE_SPHERE:
+        return float(np.sqrt(dx * dx + dy * dy + dz * dz) - halves[b, 0])
+    lx = rotations[b, 0, 0] * dx + rotations[b, 1, 0] * dy + rotations[b, 2, 0] * dz
+    ly = rotations[b, 0, 1] * dx + rotations[b, 1, 1] * dy + rotations[b, 2, 1] * dz
+    lz = rotations[b, 0, 2] * dx + rotations[b, 1, 2] * dy + rotations[b, 2, 2] * dz
+    if kind == SHAPE_CYLINDER:
+        radial = float(np.sqrt(lx * lx + ly * ly)) - halves[b, 0]
+        axial = abs(lz) - halves[b, 2]
+        if radial > 0.0 or axial > 0.0:
+            radial, axial = max(radial, 0.0), max(axial, 0.0)
+            return float(np.sqrt(radial * radial + axial * axial))
+        return float(max(radial, axial))
+    ex, ey, ez = abs(lx) - halves[b, 0], abs(ly) - halves[b, 1], abs(lz) - halves[b, 2]
+    if ex > 0.0 or ey > 0.0 or ez > 0.0:
+        ex, ey, ez = max(ex, 0.0), max(ey, 0.0), max(ez, 0.0)
+        return float(np.sqrt(ex * ex + ey * ey + ez * ez))
+    return float(max(ex, ey, ez))
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def point_box_gap(
-    world: FloatArray, index: int, rotations: FloatArray, centers: FloatArray, halves: FloatArray, b: int
+    world: FloatArray,
+    index: int,
+    rotations: FloatArray,
+    centers: FloatArray,
+    halves: FloatArray,
+    kinds: npt.NDArray[np.int64],
+    b: int,
 ) -> float:
-    """`box_gap_at` of the point world[index] and box ``b``."""
-    return box_gap_at(world[index, 0], world[index, 1], world[index, 2], rotations, centers, halves, b)
+    """`box_gap_at` of the point world[index] and obstacle ``b``."""
+    return box_gap_at(world[index, 0], world[index, 1], world[index, 2], rotations, centers, halves, kinds, b)
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)

@@ -158,6 +158,7 @@ def tree_hits_box(
     box_rotations: FloatArray,
     box_centers: FloatArray,
     box_halves: FloatArray,
+    box_kinds: npt.NDArray[np.int64],
     stack: npt.NDArray[np.int64],
     stamp: int,
 ) -> bool:
@@ -169,7 +170,8 @@ def tree_hits_box(
         n = stack[top]
         top -= 1
         place_once(n, poses, node_links, node_centers, node_world, node_placed, stamp)
-        if point_box_gap(node_world, n, box_rotations, box_centers, box_halves, b) - node_radii[n] >= margin:
+        gap = point_box_gap(node_world, n, box_rotations, box_centers, box_halves, box_kinds, b)
+        if gap - node_radii[n] >= margin:
             continue
         if node_children[n, 0] < 0:
             place_span_once(
@@ -185,7 +187,8 @@ def tree_hits_box(
             )
             for s in range(node_first[n], node_last[n]):
                 x, y, z = sphere_world[0, s], sphere_world[1, s], sphere_world[2, s]
-                if box_gap_at(x, y, z, box_rotations, box_centers, box_halves, b) - sphere_radii[s] < margin:
+                gap = box_gap_at(x, y, z, box_rotations, box_centers, box_halves, box_kinds, b)
+                if gap - sphere_radii[s] < margin:
                     return True
             continue
         stack[top + 1] = node_children[n, 0]

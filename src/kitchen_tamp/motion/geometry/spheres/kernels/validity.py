@@ -51,12 +51,10 @@ from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import (
     tree_hits_box,
     trees_touch,
 )
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
 
 FloatArray = npt.NDArray[np.float64]
 
-
-_FAR = 1e300
-"""Larger than any squared gap in metres."""
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -106,49 +104,12 @@ def _table_cell(
 @numba.njit(cache=True, fastmath=True)
 def valid_configurations(
     qs: FloatArray,
-    lower: FloatArray,
-    upper: FloatArray,
-    root: FloatArray,
-    parents: npt.NDArray[np.int64],
-    origins: FloatArray,
-    kinds: npt.NDArray[np.int64],
-    axes: FloatArray,
-    variables: npt.NDArray[np.int64],
-    group_links: npt.NDArray[np.int64],
-    group_centers: FloatArray,
-    group_radii: FloatArray,
-    group_starts: npt.NDArray[np.int64],
-    group_stops: npt.NDArray[np.int64],
-    sphere_links: npt.NDArray[np.int64],
-    sphere_centers: FloatArray,
-    sphere_radii: FloatArray,
-    group_roots: npt.NDArray[np.int64],
-    node_links: npt.NDArray[np.int64],
-    node_centers: FloatArray,
-    node_radii: FloatArray,
-    node_children: npt.NDArray[np.int64],
-    node_first: npt.NDArray[np.int64],
-    node_last: npt.NDArray[np.int64],
-    fine_links: npt.NDArray[np.int64],
-    fine_centers: FloatArray,
-    fine_radii: FloatArray,
-    box_rotations: FloatArray,
-    box_centers: FloatArray,
-    box_halves: FloatArray,
-    box_lows: FloatArray,
-    box_highs: FloatArray,
-    table_variables: npt.NDArray[np.int64],
-    table_lows: FloatArray,
-    table_steps: FloatArray,
-    table_counts: npt.NDArray[np.int64],
-    table_offsets: npt.NDArray[np.int64],
-    table_cells: npt.NDArray[np.int8],
-    table_margin: float,
-    group_box_pairs: npt.NDArray[np.int64],
-    group_pairs: npt.NDArray[np.int64],
+    arrays: ValidityArrays,
     margin: float,
+    stop_at_invalid: bool,
 ) -> npt.NDArray[np.bool_]:
-    """Per row of ``qs``: within limits and no checked pair of fine spheres closer than ``margin``.
+    """Per row of ``qs``: within limits and no checked pair of fine spheres closer than ``margin``;
+    ``arrays`` holds the model (`sphere_validity_arrays.ValidityArrays`, fields as named below).
 
     Two levels per pair: the coarse spheres (a few per link, behind one bound per group) clear a
     pair when none comes within the margin; only a pair the coarse level cannot clear is opened
@@ -160,7 +121,50 @@ def valid_configurations(
     -1. Tables are read first, from the configuration's joints alone: a pair its table proves
     colliding in the configuration's cell (1: clear, -1: colliding, 0: unknown) makes the row
     invalid before any kinematics (when ``margin`` is no smaller than the tables' ``table_margin``),
-    and a pair it proves clear is skipped (when ``margin`` is no larger)."""
+    and a pair it proves clear is skipped (when ``margin`` is no larger).
+
+    With ``stop_at_invalid`` the rows after the first invalid one are not checked (left True)."""
+    # One argument in, its arrays out once per call (numba counts a reference per field read).
+    lower = arrays.lower
+    upper = arrays.upper
+    root = arrays.root
+    parents = arrays.parents
+    origins = arrays.origins
+    kinds = arrays.kinds
+    axes = arrays.axes
+    variables = arrays.variables
+    group_links = arrays.group_links
+    group_centers = arrays.group_centers
+    group_radii = arrays.group_radii
+    group_starts = arrays.group_starts
+    group_stops = arrays.group_stops
+    sphere_radii = arrays.sphere_radii
+    group_roots = arrays.group_roots
+    node_links = arrays.node_links
+    node_centers = arrays.node_centers
+    node_radii = arrays.node_radii
+    node_children = arrays.node_children
+    node_first = arrays.node_first
+    node_last = arrays.node_last
+    fine_centers = arrays.fine_centers
+    fine_radii = arrays.fine_radii
+    box_rotations = arrays.box_rotations
+    box_centers = arrays.box_centers
+    box_halves = arrays.box_halves
+    box_kinds = arrays.box_kinds
+    table_variables = arrays.table_variables
+    table_lows = arrays.table_lows
+    table_steps = arrays.table_steps
+    table_counts = arrays.table_counts
+    table_offsets = arrays.table_offsets
+    table_cells = arrays.table_cells
+    table_margin = arrays.table_margin
+    group_pairs = arrays.group_pairs
+    coarse_local = arrays.coarse_local
+    low_x, low_y, low_z = arrays.low_x, arrays.low_y, arrays.low_z
+    high_x, high_y, high_z = arrays.high_x, arrays.high_y, arrays.high_z
+    unchecked = arrays.unchecked
+    group_order = arrays.group_order
     count = qs.shape[0]
     groups, boxes = group_radii.shape[0], box_halves.shape[0]
     clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
@@ -170,7 +174,6 @@ def valid_configurations(
     frame = np.empty((3, 4))
     sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
     group_world = np.empty((groups, 3))
-    coarse_local = np.ascontiguousarray(sphere_centers.T)
     coarse_world = np.empty((3, sphere_radii.shape[0]))
     coarse_placed = np.zeros(groups, dtype=np.int64)
     fine_world = np.empty((3, fine_radii.shape[0]))
@@ -178,25 +181,13 @@ def valid_configurations(
     node_world = np.empty((node_radii.shape[0], 3))
     node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
     stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
-    # The box pairs as a dense (group, box) table, row-major: 0 where checked, far off where not,
-    # added to the squared gap of each group's bound to each box's axis-aligned bounds.
-    unchecked = np.full(groups * boxes, _FAR)
-    group_order = np.empty(groups, dtype=np.int64)
-    seen = np.zeros(groups, dtype=np.bool_)
-    ordered = 0
-    for k in range(group_box_pairs.shape[0]):
-        g = group_box_pairs[k, 0]
-        if not seen[g]:
-            seen[g] = True
-            group_order[ordered] = g
-            ordered += 1
-        unchecked[g * boxes + group_box_pairs[k, 1]] = 0.0
-    low_x, low_y, low_z = box_lows[:, 0].copy(), box_lows[:, 1].copy(), box_lows[:, 2].copy()
-    high_x, high_y, high_z = box_highs[:, 0].copy(), box_highs[:, 1].copy(), box_highs[:, 2].copy()
+    ordered = group_order.shape[0]
     tolerance = 1e-9
     tables = table_offsets.shape[0]
     cells = np.empty((2, tables), dtype=np.int64)
     for m in range(count):
+        if stop_at_invalid and m > 0 and not valid[m - 1]:
+            break  # the rows after the first invalid one are left unchecked (True)
         stamp = m + 1
         # Table cells are far apart in memory, so each lookup would wait on memory: the next row's
         # cells are computed and fetched ahead while this row is checked.
@@ -246,10 +237,8 @@ def valid_configurations(
                 ez = max(low_z[b] - z, z - high_z[b], 0.0)
                 if ex * ex + ey * ey + ez * ez >= reach * reach:
                     continue
-                if (
-                    point_box_gap(group_world, g, box_rotations, box_centers, box_halves, b) - group_radii[g]
-                    >= margin
-                ):
+                gap = point_box_gap(group_world, g, box_rotations, box_centers, box_halves, box_kinds, b)
+                if gap - group_radii[g] >= margin:
                     continue
                 place_span_once(
                     g,
@@ -271,6 +260,7 @@ def valid_configurations(
                         box_rotations,
                         box_centers,
                         box_halves,
+                        box_kinds,
                         b,
                     )
                     if gap - sphere_radii[s] < margin:
@@ -296,6 +286,7 @@ def valid_configurations(
                     box_rotations,
                     box_centers,
                     box_halves,
+                    box_kinds,
                     stack,
                     stamp,
                 ):

@@ -1,0 +1,118 @@
+"""Straight joint-space segments checked by the sphere model in one compiled call each.
+
+`segment_checked` and `free_prefix_checked` visit exactly the configurations
+`kitchen_tamp.motion.segment_checking.CountingSegmentChecker` visits, in its order (endpoints,
+then the interior coarse to fine; or outward from ``q0`` at multiples of the resolution), and
+return its verdict and the count it would report (the rows of its batches, which start at
+``FIRST_BATCH_SIZE`` and double, up to the batch holding the first collision). They differ only
+in cost: one call instead of a Python loop of batches, and the validity kernel stops at the first
+invalid row. Configurations are interpolated without fastmath, so they are numpy's to the bit.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+from kitchen_tamp.motion.segment_checking import FIRST_BATCH_SIZE
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@numba.njit(cache=True)
+def rows_through(count: int, first: int) -> int:
+    """Rows the batches over ``count`` rows check when row ``first`` (or none, -1) is the first invalid."""
+    if first < 0:
+        return count
+    stop, size = 0, FIRST_BATCH_SIZE
+    while stop <= first:
+        stop, size = stop + size, size * 2
+    return min(stop, count)
+
+
+@numba.njit(cache=True)
+def coarse_to_fine_fractions(intervals: int) -> FloatArray:
+    """`kitchen_tamp.joint_spacing.interior_fractions` for ``intervals`` intervals: the interior
+    positions 1 .. intervals - 1 ordered by their lowest set bit, highest first (stable)."""
+    count = intervals - 1
+    keys = np.empty(count, dtype=np.int64)
+    for i in range(count):
+        position = i + 1
+        keys[i] = -(position & -position)
+    order = np.argsort(keys, kind="mergesort")
+    fractions = np.empty(count)
+    for i in range(count):
+        fractions[i] = (order[i] + 1) / intervals
+    return fractions
+
+
+@numba.njit(cache=True)
+def _first_invalid(qs: FloatArray, arrays: ValidityArrays, margin: float) -> int:
+    if qs.shape[0] == 0:
+        return -1
+    valid = valid_configurations(qs, arrays, margin, True)
+    for m in range(qs.shape[0]):
+        if not valid[m]:
+            return m
+    return -1
+
+
+@numba.njit(cache=True)
+def segment_checked(
+    q0: FloatArray,
+    q1: FloatArray,
+    intervals: int,
+    check_start: bool,
+    check_end: bool,
+    arrays: ValidityArrays,
+    margin: float,
+) -> tuple[bool, int]:
+    """(whether q0 -> q1 is valid at ``intervals`` intervals, configurations counted): the
+    endpoints asked for first, then the interior coarse to fine."""
+    ends = int(check_start) + int(check_end)
+    fractions = coarse_to_fine_fractions(intervals)
+    dimension = q0.shape[0]
+    qs = np.empty((ends + fractions.shape[0], dimension))
+    row = 0
+    if check_start:
+        qs[row] = q0
+        row += 1
+    if check_end:
+        qs[row] = q1
+        row += 1
+    for i in range(fractions.shape[0]):
+        for j in range(dimension):
+            qs[ends + i, j] = q0[j] + fractions[i] * (q1[j] - q0[j])
+    first = _first_invalid(qs, arrays, margin)
+    if 0 <= first < ends:
+        return False, ends
+    inner = first - ends if first >= 0 else -1
+    return first < 0, ends + rows_through(fractions.shape[0], inner)
+
+
+@numba.njit(cache=True)
+def free_prefix_checked(
+    q0: FloatArray, q1: FloatArray, distance: float, resolution: float, arrays: ValidityArrays, margin: float
+) -> tuple[float, int]:
+    """(how far from q0 toward q1 is free before the first collision, configurations counted):
+    configurations at every multiple of ``resolution`` from q0, then q1 (``distance`` away)."""
+    steps = int(np.ceil(distance / resolution))
+    count = max(steps - 1, 0) + 1
+    lengths = np.empty(count)
+    for k in range(count - 1):
+        lengths[k] = float(k + 1) * resolution
+    lengths[count - 1] = (distance / resolution) * resolution
+    dimension = q0.shape[0]
+    qs = np.empty((count, dimension))
+    for i in range(count):
+        share = lengths[i] / distance
+        for j in range(dimension):
+            qs[i, j] = q0[j] + share * (q1[j] - q0[j])
+    first = _first_invalid(qs, arrays, margin)
+    checked = rows_through(count, first)
+    if first < 0:
+        return distance, checked
+    return (lengths[first - 1] if first > 0 else 0.0), checked
