@@ -11,7 +11,16 @@ execution under physics.
 
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body, BoxShape, JointInfo
-from kitchen_tamp.world.camera import CameraView, Image, render, tile, write_png
+from kitchen_tamp.world.camera import (
+    CameraView,
+    Image,
+    LinkVisibility,
+    StandIns,
+    render,
+    render_with_depth,
+    tile,
+    write_png,
+)
 from kitchen_tamp.world.collision import (
     AllowedContact,
     BoolArray,
@@ -49,6 +58,7 @@ __all__ = [
     "Image",
     "InverseKinematics",
     "JointInfo",
+    "LinkVisibility",
     "Pose",
     "PyBulletCollisionChecker",
     "Robot",
@@ -56,6 +66,7 @@ __all__ = [
     "SceneClosedError",
     "SceneDescription",
     "SceneState",
+    "StandIns",
     "UnknownNameError",
     "VectorLike",
     "VisualKind",
@@ -66,6 +77,7 @@ __all__ = [
     "make_collision_checker",
     "panda_urdf_path",
     "render",
+    "render_with_depth",
     "rotation_about_axis",
     "straight_line",
     "tile",

@@ -1,9 +1,11 @@
-"""Headless pictures of a scene with PyBullet's software (tiny) renderer."""
+"""Headless pictures of a scene with PyBullet's software (tiny) renderer, and stand-in bodies
+that draw lighter copies of a body's meshes in its place."""
 
 from __future__ import annotations
 
 import struct
 import zlib
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -11,7 +13,10 @@ import numpy as np
 import pybullet as p
 from numpy.typing import NDArray
 
+from kitchen_tamp.world.bodies import Body
 from kitchen_tamp.world.scene import Scene
+from kitchen_tamp.world.transforms import FloatArray
+from kitchen_tamp.world.visual_shapes import VisualKind, visual_shapes
 
 Image = NDArray[np.uint8]
 
@@ -35,8 +40,9 @@ class CameraView:
             raise ValueError(f"invalid camera view {self}")
 
 
-def render(scene: Scene, view: CameraView) -> Image:
-    """An RGB picture (height, width, 3) of the scene seen from ``view``."""
+def render_with_depth(scene: Scene, view: CameraView) -> tuple[Image, FloatArray]:
+    """An RGB picture (height, width, 3) of the scene seen from ``view`` and its depth buffer
+    (height, width; nearer is smaller, 1 where nothing was drawn)."""
     view_matrix = p.computeViewMatrixFromYawPitchRoll(
         cameraTargetPosition=view.target,
         distance=view.distance,
@@ -53,16 +59,92 @@ def render(scene: Scene, view: CameraView) -> Image:
         farVal=view.far,
         physicsClientId=scene.client,
     )
-    _, _, rgba, _, _ = p.getCameraImage(
+    _, _, rgba, depth, _ = p.getCameraImage(
         view.width,
         view.height,
         viewMatrix=view_matrix,
         projectionMatrix=projection,
         renderer=p.ER_TINY_RENDERER,
+        flags=p.ER_NO_SEGMENTATION_MASK,
         physicsClientId=scene.client,
     )
     pixels = np.asarray(rgba, dtype=np.uint8).reshape(view.height, view.width, 4)
-    return np.ascontiguousarray(pixels[:, :, :3])
+    depths = np.asarray(depth, dtype=float).reshape(view.height, view.width)
+    return np.ascontiguousarray(pixels[:, :, :3]), depths
+
+
+def render(scene: Scene, view: CameraView) -> Image:
+    """An RGB picture (height, width, 3) of the scene seen from ``view``."""
+    return render_with_depth(scene, view)[0]
+
+
+class LinkVisibility:
+    """Hides links of bodies from the tiny renderer (which does not draw what has alpha 0) and
+    shows them again with each visual's own colour."""
+
+    def __init__(self, client: int, uids: Sequence[int]) -> None:
+        self.client = client
+        self._colours: dict[tuple[int, int], list[tuple[float, ...]]] = {}
+        for uid in uids:
+            for data in p.getVisualShapeData(uid, physicsClientId=client):
+                self._colours.setdefault((uid, data[1]), []).append(tuple(data[7]))
+
+    @property
+    def links(self) -> tuple[tuple[int, int], ...]:
+        """Every (body uid, link index) that has a visual."""
+        return tuple(self._colours)
+
+    def show_only(self, shown: Collection[tuple[int, int]]) -> None:
+        """Shows the links in ``shown`` and hides every other."""
+        for (uid, link), colours in self._colours.items():
+            visible = (uid, link) in shown
+            for index, colour in enumerate(colours):
+                rgba = colour if visible else (*colour[:3], 0.0)
+                p.changeVisualShape(uid, link, shapeIndex=index, rgbaColor=rgba, physicsClientId=self.client)
+
+
+class StandIns:
+    """Visual-only bodies that draw other mesh files in place of some of ``body``'s mesh visuals
+    (``replacements``: a visual's mesh path -> the file drawn instead, at the same scale and
+    offset), whose own links are made invisible. ``follow()`` puts each stand-in where its link
+    is now; collisions, dynamics and every other body are untouched."""
+
+    def __init__(self, body: Body, replacements: Mapping[str, Path]) -> None:
+        self.body = body
+        self._links: list[str] = []
+        self._uids: list[int] = []
+        client = body.client
+        for shape in visual_shapes(body):
+            replacement = replacements.get(shape.mesh_path or "") if shape.kind is VisualKind.MESH else None
+            if replacement is None:
+                continue
+            visual = p.createVisualShape(
+                p.GEOM_MESH,
+                fileName=str(replacement),
+                meshScale=shape.size,
+                visualFramePosition=shape.link_from_visual.position,
+                visualFrameOrientation=shape.link_from_visual.quaternion,
+                physicsClientId=client,
+            )
+            self._uids.append(p.createMultiBody(0.0, -1, visual, physicsClientId=client))
+            self._links.append(shape.link)
+        for link in set(self._links):
+            p.changeVisualShape(body.uid, body.link_index(link), rgbaColor=(1.0, 1.0, 1.0, 0.0),
+                                physicsClientId=client)
+        self.follow()
+
+    @property
+    def uids(self) -> tuple[int, ...]:
+        """The stand-in bodies."""
+        return tuple(self._uids)
+
+    def follow(self) -> None:
+        """Place every stand-in at its link's world pose."""
+        if not self._links:
+            return
+        positions, quaternions = self.body.link_frames(self._links)
+        for uid, position, quaternion in zip(self._uids, positions, quaternions, strict=True):
+            p.resetBasePositionAndOrientation(uid, position, quaternion, physicsClientId=self.body.client)
 
 
 def tile(images: list[Image], columns: int, gap: int = 4) -> Image:
