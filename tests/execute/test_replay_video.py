@@ -121,6 +121,6 @@ def test_a_failure_in_the_drawing_process_comes_back_with_its_traceback(
     blocked = tmp_path / "a file"
     blocked.write_text("not a folder")
     kitchen_map = choose_scene("problem.pddl").kitchen_map()
-    job = PictureJob(task, kitchen_map, timeline, blocked, "joints", video=False)
+    job = PictureJob(task, kitchen_map, timeline, blocked, "joints", gif=False)
     with pytest.raises(PictureError, match="Traceback"):
         PendingPictures(job).result()

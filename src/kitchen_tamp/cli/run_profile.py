@@ -4,8 +4,7 @@ The profiler starts before the entry script imports the package (the script
 looks for ``--profile`` on its command line first), so start-up is in it too.
 ``profile.prof`` is cProfile's file (``python -m pstats``, snakeviz); ``profile.txt``
 lists the functions that took longest, inclusive and by themselves. The child
-process that draws replay.gif and joints.png is not in it: its seconds are
-``timing.gif_s`` and ``timing.joints_s``.
+process that draws replay.gif is not in it: its seconds are ``timing.gif_s``.
 """
 
 from __future__ import annotations

@@ -19,8 +19,9 @@ PHASES = ("startup_s", "symbolic_s", "refinement_s", "verification_s", "physics_
 """The ``timing`` entries that follow one another in the main process, from its start (imports
 included) to the report; ``total_s`` is their sum plus ``other_s`` (writing trajectory.json, the
 verdict line, re-judging after a re-plan). Others are parts of these (``skills_s``, ``motion_s``,
-``judge_replay_s``, ``checkers_s`` of ``refinement_s``; ``html_s``, ``pictures_wait_s`` of
-``rendering_s``) or ran beside them in a second process (``gif_s``, ``joints_s``)."""
+``judge_replay_s``, ``checkers_s`` of ``refinement_s``; ``html_s``, ``joints_s``,
+``pictures_wait_s`` of ``rendering_s``) or ran beside them in a second process (``gif_s``;
+``joints_s`` without a GIF)."""
 
 
 @dataclass

@@ -1,8 +1,10 @@
-"""``replay.gif`` and ``joints.png`` drawn on the second core while the run goes on.
+"""``replay.gif`` (or, without it, ``joints.png``) drawn on the second core while the run goes on.
 
 Both pictures need only the kinematic judge's timeline, so once the judge has
-given it, a forked child process draws them (building its own kitchen for the
-GIF), while the parent executes the run under physics and writes replay.html.
+given it, a forked child process draws the GIF (building its own kitchen), while
+the parent executes the run under physics and writes replay.html and joints.png:
+that splits the work about evenly. Without a GIF, the child draws joints.png
+while the parent runs physics.
 The child inherits what it needs (the task, the kitchen map, the timeline) by
 the fork and sends back what it wrote, or the traceback of what went wrong.
 Where processes cannot be forked, the pictures are drawn in this process when
@@ -37,8 +39,8 @@ class Pictures:
     """What was drawn: the files (the GIF None when not asked for or without frames), the GIF's
     frame count, and the seconds each took."""
 
-    joints: Path
-    joints_s: float
+    joints: Path | None = None
+    joints_s: float = 0.0
     gif: Path | None = None
     frames: int = 0
     gif_s: float = 0.0
@@ -55,15 +57,22 @@ class PictureJob:
     joints_title: str
     velocities: bool = False
     """Plot joint velocities below the angles (``optimizes``)."""
-    video: bool = True
-    """Render ``replay.gif`` too."""
+    gif: bool = True
+    """Render ``replay.gif``."""
+    joints: bool = True
+    """Plot ``joints.png`` (else whoever holds the job does, with `draw_joints`)."""
+
+    def draw_joints(self) -> tuple[Path, float]:
+        """Plots ``joints.png``: its path and the seconds it took."""
+        clock = time.perf_counter()
+        path = plot_joints(self.timeline, self.joints_title, self.out_dir / JOINTS_FILE, self.velocities)
+        return path, time.perf_counter() - clock
 
     def run(self) -> Pictures:
-        clock = time.perf_counter()
-        joints = plot_joints(self.timeline, self.joints_title, self.out_dir / JOINTS_FILE, self.velocities)
-        joints_s, clock = time.perf_counter() - clock, time.perf_counter()
-        if not self.video:
+        joints, joints_s = self.draw_joints() if self.joints else (None, 0.0)
+        if not self.gif:
             return Pictures(joints, joints_s)
+        clock = time.perf_counter()
         with build_kitchen_for_task(self.task, kitchen_map=self.kitchen_map) as kitchen:
             images = render_replay(kitchen, self.timeline)
         gif = write_gif(self.out_dir / GIF_FILE, images, FRAME_SECONDS) if images else None
