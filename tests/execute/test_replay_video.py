@@ -1,5 +1,6 @@
 """replay.gif: lighter robot meshes draw the same picture, the still background and the moving
-layer put together are the picture a full drawing gives, one shared palette keeps the frames
+layer (drawn only where something moving can show) put together are the picture a full drawing
+gives (but for a pixel on an edge now and then), one shared palette keeps the frames
 faithful, and the pictures drawn in a second process arrive (or say why not)."""
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.scene.choice import choose_scene
 from kitchen_tamp.kitchen.show import overview_camera
 from kitchen_tamp.planning import Task
-from kitchen_tamp.world import render
+from kitchen_tamp.world import CameraView, PixelWindow, Scene, panda_urdf_path, render, render_with_depth
 from tests.conftest import KitchenRuns
 
 GRID_OBJ = "\n".join(
@@ -78,7 +79,7 @@ def test_layered_frames_are_full_drawings_and_stand_ins_look_alike(
             stand_ins.follow()
             full.append(render(kitchen.scene, view))
     for original, whole, parts in zip(originals, full, layered, strict=True):
-        assert np.array_equal(parts, whole)
+        assert (np.abs(parts.astype(int) - whole.astype(int)).max(axis=2) > 8).mean() < 5e-4  # edge pixels
         differing = np.abs(original.astype(int) - whole.astype(int)).max(axis=2) > 40
         assert differing.mean() < 0.01  # the lighter meshes change under 1% of the pixels
     assert not np.array_equal(layered[0], layered[-1])  # the arm moved
@@ -110,7 +111,7 @@ def test_pictures_drawn_beside_the_run_arrive(
     assert pictures.gif == tmp_path / "replay.gif" and pictures.frames == len(frame_times(timeline))
     stored = len(iio.imread(pictures.gif, index=None))
     assert 0.9 * pictures.frames <= stored <= pictures.frames  # repeated frames are merged
-    assert pictures.joints.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert pictures.joints is not None and pictures.joints.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 @pytest.mark.slow
@@ -124,3 +125,16 @@ def test_a_failure_in_the_drawing_process_comes_back_with_its_traceback(
     job = PictureJob(task, kitchen_map, timeline, blocked, "joints", gif=False)
     with pytest.raises(PictureError, match="Traceback"):
         PendingPictures(job).result()
+
+
+def test_a_window_of_the_picture_is_drawn_as_the_whole_picture_draws_it() -> None:
+    with Scene() as scene:
+        scene.load_urdf("panda", panda_urdf_path(), fixed_base=True)
+        view = CameraView((0.0, 0.0, 0.5), 1.6, yaw=40.0, pitch=-25.0, width=160, height=120)
+        whole, whole_depth = render_with_depth(scene, view)
+        window = PixelWindow(top=20, bottom=90, left=50, right=130)
+        part, part_depth = render_with_depth(scene, view, window)
+    assert part.shape == (70, 80, 3)
+    differing = np.abs(part.astype(int) - whole[20:90, 50:130].astype(int)).max(axis=2) > 8
+    assert differing.mean() < 0.002 and np.allclose(part_depth, whole_depth[20:90, 50:130], atol=1e-4)
+    assert (part_depth < 1.0).mean() > 0.1  # the robot is in the window

@@ -40,9 +40,18 @@ class CameraView:
             raise ValueError(f"invalid camera view {self}")
 
 
-def render_with_depth(scene: Scene, view: CameraView) -> tuple[Image, FloatArray]:
-    """An RGB picture (height, width, 3) of the scene seen from ``view`` and its depth buffer
-    (height, width; nearer is smaller, 1 where nothing was drawn)."""
+@dataclass(frozen=True)
+class PixelWindow:
+    """Rows ``top`` to ``bottom`` and columns ``left`` to ``right`` (ends excluded) of a picture."""
+
+    top: int
+    bottom: int
+    left: int
+    right: int
+
+
+def _camera_matrices(scene: Scene, view: CameraView) -> tuple[list[float], list[float]]:
+    """PyBullet's view and projection matrices of ``view`` (column-major, as OpenGL's)."""
     view_matrix = p.computeViewMatrixFromYawPitchRoll(
         cameraTargetPosition=view.target,
         distance=view.distance,
@@ -59,17 +68,72 @@ def render_with_depth(scene: Scene, view: CameraView) -> tuple[Image, FloatArray
         farVal=view.far,
         physicsClientId=scene.client,
     )
+    return list(view_matrix), list(projection)
+
+
+def _window_projection(projection: list[float], view: CameraView, window: PixelWindow) -> list[float]:
+    """The projection that draws only ``window`` of ``view``'s picture, pixel for pixel: the window's
+    normalised device coordinates stretched to the whole viewport (depth unchanged)."""
+    left, right = -1.0 + 2.0 * window.left / view.width, -1.0 + 2.0 * window.right / view.width
+    top, bottom = 1.0 - 2.0 * window.top / view.height, 1.0 - 2.0 * window.bottom / view.height
+    stretch = np.eye(4)
+    stretch[0, 0], stretch[0, 3] = 2.0 / (right - left), -(right + left) / (right - left)
+    stretch[1, 1], stretch[1, 3] = 2.0 / (top - bottom), -(top + bottom) / (top - bottom)
+    matrix = stretch @ np.asarray(projection, dtype=float).reshape(4, 4).T
+    return [float(value) for value in matrix.T.ravel()]
+
+
+def pixel_window(
+    scene: Scene, view: CameraView, boxes: Sequence[tuple[FloatArray, FloatArray]], padding: int
+) -> PixelWindow | None:
+    """The pixels of ``view``'s picture that can show anything inside the axis-aligned ``boxes``
+    (lower, upper corners), ``padding`` pixels wider on every side; None when none can, the whole
+    picture when a box reaches behind the camera."""
+    if not boxes:
+        return None
+    whole = PixelWindow(0, view.height, 0, view.width)
+    view_matrix, projection = _camera_matrices(scene, view)
+    camera = np.asarray(projection).reshape(4, 4).T @ np.asarray(view_matrix).reshape(4, 4).T
+    corners = np.array([[(low, high)[(k >> axis) & 1][axis] for axis in range(3)] + [1.0]
+                        for low, high in boxes for k in range(8)])
+    clip = corners @ camera.T
+    if np.any(clip[:, 3] <= view.near):
+        return whole
+    columns = (clip[:, 0] / clip[:, 3] + 1.0) * view.width / 2.0
+    rows = (1.0 - clip[:, 1] / clip[:, 3]) * view.height / 2.0
+    window = PixelWindow(
+        max(0, int(np.floor(rows.min())) - padding),
+        min(view.height, int(np.ceil(rows.max())) + padding),
+        max(0, int(np.floor(columns.min())) - padding),
+        min(view.width, int(np.ceil(columns.max())) + padding),
+    )
+    if window.bottom <= window.top or window.right <= window.left:
+        return None
+    return window
+
+
+def render_with_depth(
+    scene: Scene, view: CameraView, window: PixelWindow | None = None
+) -> tuple[Image, FloatArray]:
+    """An RGB picture (height, width, 3) of the scene seen from ``view`` and its depth buffer
+    (height, width; nearer is smaller, 1 where nothing was drawn); with ``window``, only those
+    pixels of it, drawn as the whole picture would draw them."""
+    view_matrix, projection = _camera_matrices(scene, view)
+    width, height = view.width, view.height
+    if window is not None:
+        projection = _window_projection(projection, view, window)
+        width, height = window.right - window.left, window.bottom - window.top
     _, _, rgba, depth, _ = p.getCameraImage(
-        view.width,
-        view.height,
+        width,
+        height,
         viewMatrix=view_matrix,
         projectionMatrix=projection,
         renderer=p.ER_TINY_RENDERER,
         flags=p.ER_NO_SEGMENTATION_MASK,
         physicsClientId=scene.client,
     )
-    pixels = np.asarray(rgba, dtype=np.uint8).reshape(view.height, view.width, 4)
-    depths = np.asarray(depth, dtype=float).reshape(view.height, view.width)
+    pixels = np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)
+    depths = np.asarray(depth, dtype=float).reshape(height, width)
     return np.ascontiguousarray(pixels[:, :, :3]), depths
 
 

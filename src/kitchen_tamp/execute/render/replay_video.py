@@ -28,9 +28,11 @@ from kitchen_tamp.kitchen.show import overview_camera
 from kitchen_tamp.world import (
     Body,
     CameraView,
+    FloatArray,
     Image,
     LinkVisibility,
     StandIns,
+    pixel_window,
     render,
     render_with_depth,
     visual_shapes,
@@ -44,6 +46,9 @@ FRAME_SECONDS = 0.1
 """How long each frame shows when the run is played at nominal speed."""
 PALETTE_FRAME_STRIDE = 10
 """Every this many frames one is looked at to choose the shared palette."""
+WINDOW_PADDING = 6
+"""Pixels drawn around where the moving things' collision bounds fall (their visuals may reach a
+little further than their collision shapes)."""
 
 
 def frame_times(timeline: Timeline, max_frames: int = MAX_FRAMES, min_frames: int = MIN_FRAMES) -> np.ndarray:
@@ -82,16 +87,34 @@ class LayeredFrames:
         self.kitchen, self.view = kitchen, view
         others = [body.uid for body in kitchen.scene.bodies if body.uid != kitchen.robot.body.uid]
         self.visibility = LinkVisibility(kitchen.scene.client, [*others, *stand_ins.uids])
-        still = {(kitchen.kitchen.uid, link) for link in fixed_links(kitchen.kitchen)}
+        fixed = fixed_links(kitchen.kitchen)
+        still = {(kitchen.kitchen.uid, link) for link in fixed}
         self.moving = [link for link in self.visibility.links if link not in still]
+        self._moving_bodies = [body for body in kitchen.scene.bodies if body.uid != kitchen.kitchen.uid]
+        self._moving_links = [kitchen.kitchen.link_name(index) for index in kitchen.kitchen.link_indices
+                              if index not in fixed]
         self.visibility.show_only(still)
         self.background, self.depth = render_with_depth(kitchen.scene, view)
         self.visibility.show_only(self.moving)
 
+    def _moving_bounds(self) -> list[tuple[FloatArray, FloatArray]]:
+        """Collision bounds of what can move: the robot (its stand-ins ride on its links), the
+        boxes, the kitchen's moving links."""
+        bounds = [body.aabb() for body in self._moving_bodies]
+        return bounds + [self.kitchen.kitchen.aabb(link) for link in self._moving_links]
+
     def frame(self) -> Image:
-        """The scene as it is now."""
-        front, depth = render_with_depth(self.kitchen.scene, self.view)
-        return np.where((depth < self.depth)[:, :, None], front, self.background)
+        """The scene as it is now: the background, and the moving layer drawn over the pixels where
+        anything moving can show (`pixel_window`), where it is nearer."""
+        picture = self.background.copy()
+        window = pixel_window(self.kitchen.scene, self.view, self._moving_bounds(), WINDOW_PADDING)
+        if window is None:
+            return picture
+        front, depth = render_with_depth(self.kitchen.scene, self.view, window)
+        rows, columns = slice(window.top, window.bottom), slice(window.left, window.right)
+        nearer = depth < self.depth[rows, columns]
+        picture[rows, columns][nearer] = front[nearer]
+        return picture
 
     def close(self) -> None:
         """Shows every link again."""
