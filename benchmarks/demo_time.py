@@ -105,7 +105,8 @@ def _environment(cache: Path, source: Path | None = None) -> dict[str, str]:
 
 def _fresh_clone(checkout: Checkout, scratch: Path) -> Path:
     clone = Path(tempfile.mkdtemp(prefix=f"clone-{checkout.label}-", dir=scratch))
-    subprocess.run(["git", "clone", "--quiet", "--no-hardlinks", str(checkout.root), str(clone)], check=True)
+    subprocess.run(["git", "-c", "advice.detachedHead=false", "clone", "--quiet", "--no-hardlinks",
+                    str(checkout.root), str(clone)], check=True)
     return clone
 
 

@@ -5,6 +5,7 @@ faithful, and the pictures drawn in a second process arrive (or say why not)."""
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import imageio.v3 as iio
@@ -138,3 +139,18 @@ def test_a_window_of_the_picture_is_drawn_as_the_whole_picture_draws_it() -> Non
     differing = np.abs(part.astype(int) - whole[20:90, 50:130].astype(int)).max(axis=2) > 8
     assert differing.mean() < 0.002 and np.allclose(part_depth, whole_depth[20:90, 50:130], atol=1e-4)
     assert (part_depth < 1.0).mean() > 0.1  # the robot is in the window
+
+
+@pytest.mark.slow
+def test_cancelled_pictures_leave_nothing_behind(
+    problem_timeline: tuple[Task, Timeline], tmp_path: Path
+) -> None:
+    task, timeline = problem_timeline
+    kitchen_map = choose_scene("problem.pddl").kitchen_map()
+    job = PictureJob(task, kitchen_map, timeline, tmp_path, "joints", joints=False)
+    pending = PendingPictures(job)
+    time.sleep(0.5)  # drawing by now
+    pending.cancel()
+    assert not list(tmp_path.glob(".*.tmp"))  # nothing half-written
+    if (tmp_path / "replay.gif").exists():  # a fast machine finished it
+        assert len(iio.imread(tmp_path / "replay.gif", index=None)) > 1

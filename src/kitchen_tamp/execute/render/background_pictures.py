@@ -118,10 +118,13 @@ class PendingPictures:
         raise PictureError(str(outcome))
 
     def cancel(self) -> None:
-        """Stops the child (files are written atomically, so nothing half-written is left)."""
+        """Stops the child; what it was writing is removed (files are written to a temporary name
+        with the writer's process id, then renamed: see `kitchen_tamp.atomic_files`)."""
         if self._process is not None and self._process.is_alive():
             self._process.terminate()
             self._process.join()
+            for unfinished in self.job.out_dir.glob(f".*.{self._process.pid}.*.tmp"):
+                unfinished.unlink(missing_ok=True)
         if self._receiver is not None:
             self._receiver.close()
         self._process = self._receiver = None
