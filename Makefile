@@ -14,6 +14,7 @@ $(STAMP): pyproject.toml requirements.txt requirements-dev.txt
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -r requirements-dev.txt
 	$(BIN)/python -m pip install --quiet --no-deps -e .
+	$(BIN)/python -m kitchen_tamp.cli.prepare
 	touch $(STAMP)
 
 # Debian's Chromium for the replay.html browser test (which skips, saying why, without it).

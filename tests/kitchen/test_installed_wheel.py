@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from kitchen_tamp.motion.geometry.spheres.scene import sphere_cache_directory
+from kitchen_tamp.motion.geometry.spheres import sphere_cache_directory
 from tests.kitchen.conftest import REPO
 
 pytestmark = pytest.mark.slow

@@ -39,6 +39,9 @@ def _add_viewing_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--gui", action="store_true", help="also play the run in a PyBullet window")
     parser.add_argument("--step", action="store_true", help="wait for Enter before each action of the replay")
     parser.add_argument("--no-physics", action="store_true", help="skip execution under physics")
+    parser.add_argument("--profile", action="store_true",
+                        help="write profile.prof and profile.txt, a profile of the whole run, beside "
+                             "the report")
 
 
 def _add_planning_options(sub: argparse.ArgumentParser, mode: str) -> None:

@@ -19,8 +19,8 @@ from typing import Final
 import numpy as np
 
 from kitchen_tamp.cli import ExitCode
+from kitchen_tamp.cli.run_profile import write_profile
 from kitchen_tamp.execute import (
-    FRAME_SECONDS,
     REPORT_FILE,
     RunReport,
     SavedRun,
@@ -28,14 +28,12 @@ from kitchen_tamp.execute import (
     Verification,
     build_timeline,
     judge_under_physics,
-    plot_joints,
-    render_replay,
     verify_trajectory,
-    write_gif,
     write_trajectory,
 )
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
+from kitchen_tamp.execute.render.background_pictures import PendingPictures, PictureJob
 from kitchen_tamp.execute.render.browser_replay import (
     HTML_FILE,
     LiveViewer,
@@ -48,8 +46,6 @@ from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_tas
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
 
-GIF_FILE = "replay.gif"
-JOINTS_FILE = "joints.png"
 MAX_REPLANS: Final = 2
 """Re-plans under physics a planning run may make before its verdict stands."""
 
@@ -158,45 +154,80 @@ def _judge_physically(
     return execution
 
 
-def judge_and_render(context: RunContext) -> int:
-    """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code."""
-    while True:
-        verification, timeline = _judge_kinematically(context)
-        rollout = RolloutRecorder() if context.viewing.video else None
-        physics = None
-        if context.viewing.physics:
-            physics = _judge_physically(context, verification, rollout)
-        if physics is None or physics.replan is None or physics.replan.trajectory is None:
-            break
-    if not verification.verified:
-        context.report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
-    _render(context, timeline, rollout)
-    return finish(context.report, context.out_dir, context.inputs, context.report_name)
-
-
-def _render(context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None) -> None:
-    clock = time.perf_counter()
-    run, report, out_dir = context.run, context.report, context.out_dir
+def _draw_pictures(context: RunContext, timeline: Timeline) -> PendingPictures:
+    """Starts drawing replay.gif (without it, joints.png) from the judge's timeline on the second core."""
+    run = context.run
     velocities = run.mode == "optimizes"
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles" + (
         " and velocities" if velocities else "")
-    report.outputs["joints_plot"] = plot_joints(timeline, title, out_dir / JOINTS_FILE, velocities).name
-    report.outputs["gif"] = report.outputs["html"] = None
-    if context.viewing.video:
+    video = context.viewing.video
+    job = PictureJob(context.task, context.kitchen_map, timeline, context.out_dir, title, velocities,
+                     gif=video, joints=not video)
+    return PendingPictures(job)
+
+
+def judge_and_render(context: RunContext) -> int:
+    """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code.
+    The pictures of the timeline are drawn while physics judges (`background_pictures`)."""
+    pictures: PendingPictures | None = None
+    try:
+        while True:
+            verification, timeline = _judge_kinematically(context)
+            if pictures is not None:  # the file was re-planned: its pictures are drawn again
+                pictures.cancel()
+            pictures = _draw_pictures(context, timeline)
+            rollout = RolloutRecorder() if context.viewing.video else None
+            physics = None
+            if context.viewing.physics:
+                physics = _judge_physically(context, verification, rollout)
+            if physics is None or physics.replan is None or physics.replan.trajectory is None:
+                break
+        if not verification.verified:
+            context.report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
+        _render(context, timeline, rollout, pictures)
+    except BaseException:
+        if pictures is not None:
+            pictures.cancel()
+        raise
+    return finish(context.report, context.out_dir, context.inputs, context.report_name)
+
+
+def _write_html(context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None) -> None:
+    clock = time.perf_counter()
+    report, path = context.report, context.out_dir / HTML_FILE
+    if rollout is not None and rollout.captured:  # the motion the simulator executed
+        report.outputs["html"] = rollout.write(path, context.live).name
+        report.outputs["html_shows"] = "physics"
+    else:
         with build_kitchen_for_task(context.task, kitchen_map=context.kitchen_map) as kitchen:
-            html_clock = time.perf_counter()
-            if rollout is not None and rollout.captured:  # the motion the simulator executed
-                report.outputs["html"] = rollout.write(out_dir / HTML_FILE, context.live).name
-                report.outputs["html_shows"] = "physics"
-            else:
-                html = write_timeline_replay(kitchen, timeline, out_dir / HTML_FILE, context.live)
-                report.outputs["html"] = html.name
-                report.outputs["html_shows"] = "kinematic replay"
-            report.timing["html_s"] = time.perf_counter() - html_clock
-            images = render_replay(kitchen, timeline)
-        if images:
-            report.outputs["gif"] = write_gif(out_dir / GIF_FILE, images, FRAME_SECONDS).name
-        say(f"rendered {len(images)} frames of the replay")
+            report.outputs["html"] = write_timeline_replay(kitchen, timeline, path, context.live).name
+        report.outputs["html_shows"] = "kinematic replay"
+    report.timing["html_s"] = time.perf_counter() - clock
+
+
+def _render(
+    context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None, pictures: PendingPictures
+) -> None:
+    clock = time.perf_counter()
+    report = context.report
+    report.outputs["joints_plot"] = None
+    report.outputs["gif"] = report.outputs["html"] = None
+    joints_s = 0.0
+    if context.viewing.video:
+        _write_html(context, timeline, rollout)
+    if not pictures.job.joints:
+        joints, joints_s = pictures.job.draw_joints()
+        report.outputs["joints_plot"] = joints.name
+    waited = time.perf_counter()
+    drawn = pictures.result()
+    report.timing["pictures_wait_s"] = time.perf_counter() - waited
+    report.timing["joints_s"] = joints_s + drawn.joints_s
+    if drawn.joints is not None:
+        report.outputs["joints_plot"] = drawn.joints.name
+    if context.viewing.video:
+        report.timing["gif_s"] = drawn.gif_s
+        report.outputs["gif"] = None if drawn.gif is None else drawn.gif.name
+        say(f"rendered {drawn.frames} frames of the replay")
     report.timing["rendering_s"] = time.perf_counter() - clock
 
 
@@ -204,7 +235,9 @@ def finish(report: RunReport, out_dir: Path, inputs: RunInputs, report_name: str
     """Write the report and print the verdict line; the exit code."""
     if report.started is not None:
         report.timing["total_s"] = time.perf_counter() - report.started
+        report.timing["other_s"] = report.unaccounted_seconds()
     path = report.write(out_dir / report_name)
+    write_profile(out_dir)
     verification = report.verification or {}
     files = inputs.words()
     if report.solved:

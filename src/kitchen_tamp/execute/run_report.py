@@ -15,6 +15,13 @@ from kitchen_tamp.atomic_files import write_atomically
 
 REPORT_FORMAT = "kitchen_tamp.report/1"
 REPORT_FILE = "report.json"
+PHASES = ("startup_s", "symbolic_s", "refinement_s", "verification_s", "physics_s", "rendering_s")
+"""The ``timing`` entries that follow one another in the main process, from its start (imports
+included) to the report; ``total_s`` is their sum plus ``other_s`` (writing trajectory.json, the
+verdict line, re-judging after a re-plan). Others are parts of these (``skills_s``, ``motion_s``,
+``judge_replay_s``, ``checkers_s`` of ``refinement_s``; ``html_s``, ``joints_s``,
+``pictures_wait_s`` of ``rendering_s``) or ran beside them in a second process (``gif_s``;
+``joints_s`` without a GIF)."""
 
 
 @dataclass
@@ -78,6 +85,13 @@ class RunReport:
         """Record why the run did not solve the problem (the first failure wins)."""
         if self.failure is None:
             self.failure = {"stage": stage, "step": step, "action": action, "reason": reason}
+
+    def unaccounted_seconds(self) -> float:
+        """``total_s`` less the phases (`PHASES`) it holds: what no phase accounts for."""
+        total = self.timing.get("total_s")
+        phases = [self.timing.get(phase) for phase in PHASES]
+        counted = sum(value for value in phases if isinstance(value, float))
+        return float(total) - counted if isinstance(total, float) else 0.0
 
     def data(self) -> dict[str, Any]:
         return {

@@ -104,16 +104,18 @@ def refine_action(
             skill_failure=failure,
         )
     skills_s = time.perf_counter() - clock
-    start = kitchen.arm_configuration()
+    start, clock = kitchen.arm_configuration(), time.perf_counter()
     checker = planning_checker(kitchen, targets, planning_margin, collision_model)
     margin = planning_margin
     if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
         # an end is closer than the margin: plan without slack
         checker, margin = planning_checker(kitchen, targets, 0.0, collision_model), 0.0
     strict = strict_checker(targets, checker)
+    checkers_s = time.perf_counter() - clock
     solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
-    seconds = {"skills_s": skills_s, "motion_s": solution.seconds, **solution.timings}
+    seconds = {"skills_s": skills_s, "checkers_s": checkers_s, "motion_s": solution.seconds,
+               **solution.timings}
 
     def record(trajectory: ActionTrajectory | None, rejection: str | None) -> ActionSampleRecord:
         return ActionSampleRecord(

@@ -11,7 +11,18 @@ execution under physics.
 
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body, BoxShape, JointInfo
-from kitchen_tamp.world.camera import CameraView, Image, render, tile, write_png
+from kitchen_tamp.world.camera import (
+    CameraView,
+    Image,
+    LinkVisibility,
+    PixelWindow,
+    StandIns,
+    pixel_window,
+    render,
+    render_with_depth,
+    tile,
+    write_png,
+)
 from kitchen_tamp.world.collision import (
     AllowedContact,
     BoolArray,
@@ -49,6 +60,8 @@ __all__ = [
     "Image",
     "InverseKinematics",
     "JointInfo",
+    "LinkVisibility",
+    "PixelWindow",
     "Pose",
     "PyBulletCollisionChecker",
     "Robot",
@@ -56,6 +69,7 @@ __all__ = [
     "SceneClosedError",
     "SceneDescription",
     "SceneState",
+    "StandIns",
     "UnknownNameError",
     "VectorLike",
     "VisualKind",
@@ -65,7 +79,9 @@ __all__ = [
     "describe_scene",
     "make_collision_checker",
     "panda_urdf_path",
+    "pixel_window",
     "render",
+    "render_with_depth",
     "rotation_about_axis",
     "straight_line",
     "tile",

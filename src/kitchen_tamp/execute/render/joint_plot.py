@@ -1,14 +1,14 @@
-"""``joints.png``: joint angles over time with action boundaries marked."""
+"""``joints.png``: joint angles over time with action boundaries marked.
+
+Matplotlib is imported when a plot is drawn (its Agg canvas, without pyplot), not when
+the package is: a run's start-up does not wait for it.
+"""
 
 from __future__ import annotations
 
 import io
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
 from kitchen_tamp.atomic_files import write_atomically
@@ -18,9 +18,14 @@ from kitchen_tamp.execute.timeline import Timeline
 def plot_joints(timeline: Timeline, title: str, path: Path, show_velocities: bool = False) -> Path:
     """Plot each arm joint's angle against time (and, if asked, its velocity below),
     with a dashed line and the action's name at the start of every action."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
     times, qs = timeline.joint_samples()
     rows = 2 if show_velocities else 1
-    figure, axes = plt.subplots(rows, 1, figsize=(11, 3.6 * rows), sharex=True, squeeze=False)
+    figure = Figure(figsize=(11, 3.6 * rows))
+    FigureCanvasAgg(figure)
+    axes = figure.subplots(rows, 1, sharex=True, squeeze=False)
     angle_axis = axes[0][0]
     for joint in range(qs.shape[1] if qs.ndim == 2 else 0):
         angle_axis.plot(times, qs[:, joint], linewidth=1.2, label=f"joint {joint + 1}")
@@ -50,5 +55,4 @@ def plot_joints(timeline: Timeline, title: str, path: Path, show_velocities: boo
     figure.tight_layout()
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=100)
-    plt.close(figure)
     return write_atomically(path, buffer.getvalue())

@@ -5,11 +5,14 @@ and not to others; Meshcat's JavaScript merges the parts of an OBJ and fails on
 such a mix (``mergeGeometries() failed``, the link not drawn). The texture only
 tints the materials, whose colours are in the MTL files, so the copy sent to the
 browser drops texture coordinates and maps, comments, and material libraries
-that do not exist. Geometry, normals and materials are the file's own.
+that do not exist. Geometry, normals and materials are the file's own. The copies
+are kept in the user cache (``untextured_meshes/``).
 """
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import re
 from functools import lru_cache
 from pathlib import Path
@@ -17,11 +20,18 @@ from pathlib import Path
 from pydrake.common import MemoryFile
 from pydrake.geometry import InMemoryMesh
 
+from kitchen_tamp.atomic_files import write_atomically
+from kitchen_tamp.user_cache import cache_directory
+
+UNTEXTURED_VERSION = "1"
+"""Bump when what `untextured_obj_text` leaves changes (kept copies are then not read)."""
+
 _DROPPED_OBJ_LINES = re.compile(r"^(?:vt\s|#).*\n?", re.MULTILINE)
 _TEXTURE_INDEX = re.compile(r"/\d*/")
 """``v/vt/vn`` -> ``v//vn``."""
 _TEXTURE_ONLY_INDEX = re.compile(r"(?<=\d)/\d+(?=\s|$)", re.MULTILINE)
 """``v/vt`` -> ``v`` (run after ``_TEXTURE_INDEX``, so ``v//vn`` is left alone)."""
+_MATERIAL_LIBRARY = re.compile(r"^mtllib[ \t]+(.*?)\s*$", re.MULTILINE)
 _DROPPED_MTL_LINES = re.compile(r"^\s*(?:map_|#).*\n?", re.MULTILINE)
 
 
@@ -41,20 +51,38 @@ def untextured_mtl_text(text: str) -> str:
     return _DROPPED_MTL_LINES.sub("", text)
 
 
+def _kept_copy(obj: Path, libraries: frozenset[str]) -> str:
+    """The untextured text of ``obj``, from the user cache when it was made before (the regular
+    expressions take about a second for the Panda's meshes), keyed by the file's path, size and
+    modification time."""
+    status = obj.stat()
+    key = hashlib.sha256(
+        f"{UNTEXTURED_VERSION}|{obj.resolve()}|{status.st_size}|{status.st_mtime_ns}|{sorted(libraries)}".encode()
+    ).hexdigest()[:24]
+    try:
+        kept: Path | None = cache_directory() / "untextured_meshes" / f"{key}.obj"
+    except RuntimeError:  # no home directory: nothing is kept
+        kept = None
+    if kept is not None and kept.is_file():
+        return kept.read_text()
+    text = untextured_obj_text(obj.read_text(errors="replace"), libraries)
+    if kept is not None:
+        with contextlib.suppress(OSError):  # an unwritable cache only costs time
+            write_atomically(kept, text)
+    return text
+
+
 @lru_cache(maxsize=32)
 def untextured_obj_mesh(path: str) -> InMemoryMesh:
     """The OBJ file at ``path`` and the material libraries it names, untextured, in memory."""
     obj = Path(path)
-    text = obj.read_text(errors="replace")
     libraries = {}
-    for line in text.splitlines():
-        if line.startswith("mtllib"):
-            name = line[6:].strip()
-            if (obj.parent / name).is_file():
-                libraries[name] = MemoryFile(
-                    untextured_mtl_text((obj.parent / name).read_text(errors="replace")), ".mtl", name
-                )
+    for name in _MATERIAL_LIBRARY.findall(obj.read_text(errors="replace")):
+        if (obj.parent / name).is_file():
+            libraries[name] = MemoryFile(
+                untextured_mtl_text((obj.parent / name).read_text(errors="replace")), ".mtl", name
+            )
     return InMemoryMesh(
-        mesh_file=MemoryFile(untextured_obj_text(text, frozenset(libraries)), ".obj", obj.name),
+        mesh_file=MemoryFile(_kept_copy(obj, frozenset(libraries)), ".obj", obj.name),
         supporting_files=libraries,
     )

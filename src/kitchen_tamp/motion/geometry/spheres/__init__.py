@@ -16,12 +16,9 @@ The model's internals are described in ``docs/sphere-model.md``.
 
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
-from kitchen_tamp.motion.geometry.spheres.scene import (
-    PYBULLET_MESH_MARGIN,
-    SphereScene,
-    sphere_cache_directory,
-)
+from kitchen_tamp.motion.geometry.spheres.scene import PYBULLET_MESH_MARGIN, SphereScene
 from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+from kitchen_tamp.motion.geometry.spheres.stored_spheres import sphere_cache_directory
 
 __all__ = [
     "PYBULLET_MESH_MARGIN",

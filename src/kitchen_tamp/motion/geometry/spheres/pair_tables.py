@@ -16,26 +16,25 @@ margin), so the kernel rejects the row from its joints alone. Only the speed cha
 without the table a pair a centimetre or two apart opens the fine spheres at every
 configuration.
 
-Tables are kept in memory and on disk beside the spheres (keyed by the pair's
-spheres, the robot's kinematics, the limits and the margin).
+Tables are kept in memory and stored beside the spheres (`stored_spheres`: shipped with the
+package for the Panda, else in the user cache), keyed by the pair's spheres, the robot's
+kinematics, the limits and the margin.
 """
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import hashlib
-import io
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_arrays
-from kitchen_tamp.motion.geometry.spheres.scene import SphereScene, sphere_cache_directory
+from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
+from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_pair_cells, save_pair_cells
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -200,17 +199,11 @@ def _prove_cells(
 
 @functools.lru_cache(maxsize=64)
 def _stored_cells(key: str) -> npt.NDArray[np.int8] | None:
-    try:
-        return np.asarray(np.load(sphere_cache_directory() / f"pairs-{key}.npy"), dtype=np.int8)
-    except (OSError, ValueError, RuntimeError):
-        return None
+    return load_pair_cells(key)
 
 
 def _store_cells(key: str, cells: npt.NDArray[np.int8]) -> None:
-    buffer = io.BytesIO()
-    np.save(buffer, cells)
-    with contextlib.suppress(OSError, RuntimeError):  # an unwritable cache only costs time
-        write_atomically(sphere_cache_directory() / f"pairs-{key}.npy", buffer.getvalue())
+    save_pair_cells(key, cells)
     _stored_cells.cache_clear()
 
 

@@ -29,14 +29,12 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.motion.geometry.described_scene import DescribedScene
 from kitchen_tamp.motion.geometry.spheres.covering import (
     DEFAULT_COVERING_TOLERANCE,
@@ -49,9 +47,9 @@ from kitchen_tamp.motion.geometry.spheres.covering import (
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.primitives import SHAPE_BOX, SHAPE_KINDS
 from kitchen_tamp.motion.geometry.spheres.kinematics import KinematicTree
+from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_covering, save_covering
 from kitchen_tamp.motion.geometry.spheres.tight_covering import TIGHT_COVERING_TOLERANCE, cover_tightly
 from kitchen_tamp.motion.geometry.urdf import UrdfCollision, read_urdf
-from kitchen_tamp.user_cache import cache_directory
 
 FloatArray = npt.NDArray[np.float64]
 IndexArray = npt.NDArray[np.intp]
@@ -80,12 +78,6 @@ def shape_polytope(shape: UrdfCollision) -> ConvexPolytope:
     return local.transformed(shape.origin)
 
 
-def sphere_cache_directory() -> Path:
-    """Where generated sphere sets are kept between runs: ``spheres/`` in kitchen_tamp's
-    cache directory (``kitchen_tamp.user_cache``)."""
-    return cache_directory() / "spheres"
-
-
 def _cache_key(shape: UrdfCollision, tolerance: float, tight: bool) -> str:
     digest = hashlib.sha256()
     digest.update((TIGHT_COVERING_VERSION if tight else COVERING_VERSION).encode())
@@ -100,8 +92,9 @@ def _cache_key(shape: UrdfCollision, tolerance: float, tight: bool) -> str:
 @functools.lru_cache(maxsize=256)
 def _covered_shape(urdf_path: str, index: int, tolerance: float, tight: bool = False) -> SphereSet:
     """Spheres covering one collision shape of a URDF, in its link's frame, coarse
-    (`cover_with_spheres`) or ``tight`` (`cover_tightly`); kept in memory and on disk: a mesh is
-    covered once per machine, not once per run."""
+    (`cover_with_spheres`) or ``tight`` (`cover_tightly`); kept in memory and stored
+    (`stored_spheres`: shipped with the package, else in the user cache): a mesh is covered once
+    per machine at most, not once per run."""
     shape = read_urdf(urdf_path).collisions[index]
     if shape.kind == "sphere":
         return SphereSet(shape.origin[:3, 3][None], shape.size[:1].copy())
@@ -111,24 +104,12 @@ def _covered_shape(urdf_path: str, index: int, tolerance: float, tight: bool = F
             return cover_tightly(shape_polytope(shape), tolerance)
         return cover_with_spheres(shape_polytope(shape), tolerance)
 
-    try:
-        cached = sphere_cache_directory() / f"{_cache_key(shape, tolerance, tight)}.json"
-    except RuntimeError:  # no home directory: no cache, only time lost
-        return cover()
-    try:
-        stored = json.loads(cached.read_text())
-        return SphereSet(
-            np.array(stored["centers"], dtype=float).reshape(-1, 3), np.array(stored["radii"], dtype=float)
-        )
-    except (OSError, ValueError, KeyError):
-        pass
+    key = _cache_key(shape, tolerance, tight)
+    stored = load_covering(key)
+    if stored is not None:
+        return stored
     covered = cover()
-    try:
-        cached.parent.mkdir(parents=True, exist_ok=True)
-        text = json.dumps({"centers": covered.centers.tolist(), "radii": covered.radii.tolist()})
-        write_atomically(cached, text)
-    except OSError:
-        pass  # an unwritable cache only costs time
+    save_covering(key, covered)
     return covered
 
 

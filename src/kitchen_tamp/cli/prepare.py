@@ -1,0 +1,63 @@
+"""``python -m kitchen_tamp.cli.prepare``: compile the sphere model's kernels at install time.
+
+The validity and clearance kernels are compiled by numba the first time they are
+called (about half a minute of one core) and cached on disk beside their sources
+(``__pycache__``; where the installed package is read-only, numba keeps them in
+the user's cache). ``make install`` runs this once, so that a fresh checkout's
+first run spends its time planning rather than compiling; an installed wheel can
+run it too (``kitchen-tamp-prepare``). It calls each kernel once, with the argument
+types a run gives it, on the default kitchen built in a throw-away cache folder,
+so nothing lands in the user's cache (no models, no spheres): their first run
+still starts from an empty cache.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+
+def _compile_kernels() -> None:
+    from kitchen_tamp.kitchen import build_kitchen_for_task
+    from kitchen_tamp.kitchen.scene.choice import choose_scene
+    from kitchen_tamp.motion.geometry.spheres import SphereClearance, SphereCollisionChecker
+    from kitchen_tamp.planning import load_task
+    from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
+    from kitchen_tamp.world import describe_collision_checker
+
+    choice = choose_scene(DEFAULT_PROBLEM)
+    task = load_task(choice.problem, choice.domain)
+    with build_kitchen_for_task(task, kitchen_map=choice.kitchen_map()) as kitchen:
+        description = describe_collision_checker(kitchen.collision_checker())
+        home = np.atleast_2d(kitchen.arm_configuration())
+    checker = SphereCollisionChecker(description)
+    checker.is_valid(home)
+    checker.is_valid_without_padding(home)
+    SphereClearance(checker.model, 0.005, ends=home)(home)
+
+
+def main() -> int:
+    clock = time.perf_counter()
+    # numba decides where its cache goes when the kernels are imported: before the cache moves
+    import kitchen_tamp.motion.geometry.spheres  # noqa: F401
+
+    saved = os.environ.get("XDG_CACHE_HOME")
+    with tempfile.TemporaryDirectory(prefix="kitchen_tamp-prepare-") as cache:
+        os.environ["XDG_CACHE_HOME"] = cache
+        try:
+            _compile_kernels()
+        finally:
+            if saved is None:
+                os.environ.pop("XDG_CACHE_HOME", None)
+            else:
+                os.environ["XDG_CACHE_HOME"] = saved
+    print(f"compiled the sphere model's kernels in {time.perf_counter() - clock:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
