@@ -7,9 +7,9 @@ overestimates the steps still needed; so goal paths come out in non-decreasing
 length. A path never revisits one of its own states, so every plan is acyclic
 and the enumeration ends on finite state spaces. Equal lengths are ordered by
 an optional seeded random source, else by generation order. It works over any
-state and action types: ``iter_plans`` runs it on a grounded ``Task`` with h_max,
-and the bilevel package's abstract plan generator on abstract states with exact
-goal distances.
+state and action types: ``iter_plans`` runs it on a grounded ``Task`` with h_max
+(shortest first) or h_FF (best first, for large tasks), and the bilevel package's
+abstract plan generator on abstract states with exact goal distances.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import math
 from collections.abc import Callable, Iterable, Iterator
 from typing import Generic, Protocol, TypeVar
 
-from kitchen_tamp.planning.heuristics import make_heuristic
+from kitchen_tamp.planning.heuristics import HeuristicName, make_heuristic
 from kitchen_tamp.planning.task import GroundAction, Task
 
 S = TypeVar("S")
@@ -107,13 +107,23 @@ def shortest_plans_first(
 
 
 def iter_plans(
-    task: Task, *, rng: RandomSource | None = None, max_length: int | None = None
+    task: Task,
+    *,
+    rng: RandomSource | None = None,
+    max_length: int | None = None,
+    heuristic: HeuristicName = "hmax",
 ) -> Iterator[tuple[GroundAction, ...]]:
-    """Yield every acyclic plan of ``task``, shortest first (lazily: take what you need).
+    """Yield every acyclic plan of ``task`` (lazily: take what you need).
 
-    Ordered by length + h_max; equal lengths by ``rng`` if given, else by generation order.
+    Ordered by length + ``heuristic``; equal values by ``rng`` if given, else by
+    generation order. With h_max (the default) the bound is admissible and plans come
+    shortest first. With an informative heuristic that may overestimate (h_FF) they come
+    best first instead, as in A* with that heuristic: on a large task the first plan
+    comes after a few expansions where h_max's bound leaves the search breadth-first;
+    a later plan may be shorter than an earlier one, and ``max_length`` bounds the
+    estimate rather than the plans' length.
     """
     for _, actions in shortest_plans_first(
-            task.initial_state, task.successors, task.is_goal, make_heuristic(task, "hmax"),
+            task.initial_state, task.successors, task.is_goal, make_heuristic(task, heuristic),
             rng=rng, max_length=max_length):
         yield actions

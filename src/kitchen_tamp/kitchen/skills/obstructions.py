@@ -1,0 +1,92 @@
+"""Confirming what a failed skill blames, before the planner builds on it.
+
+A ``SkillFailure`` of kind ``obstructed`` names every box its refused candidates ran
+into, most often first; some of them may only have been grazed by candidates that
+failed for other reasons too. ``confirm_obstruction`` checks the names the way the
+failure claims them: with the first one (then the first two, the first three) moved
+out of the scene, the skill is sampled again, and the fewest boxes whose absence lets
+it find targets are the obstruction. ``confirm_unreachable`` checks a placement that
+found nothing to blame: with every other box moved out, if the skill still finds no
+targets, the place is out of the hand's reach whatever stands where.
+
+Both leave the scene as they found it, and draw from the generator they are given
+(the caller's own, so the planner's samples are not disturbed).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from typing import Final
+
+import numpy as np
+
+from kitchen_tamp.kitchen.errors import SkillFailure
+from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS, SkillParameters
+from kitchen_tamp.kitchen.skills.registry import GroundedAction, sample_action_targets
+from kitchen_tamp.world import Pose
+
+MAX_BLOCKERS: Final = 3
+"""The most boxes one confirmed obstruction names (prefixes of the failure's list up to this)."""
+AWAY_DEPTH_M: Final = 50.0
+"""How far below the floor a box moved out of the scene is put (each its own spot)."""
+
+
+@contextmanager
+def moved_away(kitchen: KitchenScene, boxes: Iterable[str]) -> Iterator[None]:
+    """The kitchen without ``boxes``: their bodies far below the floor (apart), and left out
+    of the kitchen's boxes (so no check asks what they stand on); restored after."""
+    everything = kitchen.boxes
+    with kitchen.scene.preserved():
+        away = list(boxes)
+        for index, name in enumerate(away):
+            kitchen.box(name).reset_base_pose(Pose((10.0 * (index + 1), 0.0, -AWAY_DEPTH_M)))
+        kitchen.boxes = {name: body for name, body in everything.items() if name not in away}
+        try:
+            yield
+        finally:
+            kitchen.boxes = everything
+
+
+def _finds_targets(
+    kitchen: KitchenScene, action: GroundedAction, rng: np.random.Generator, parameters: SkillParameters
+) -> bool:
+    try:
+        sample_action_targets(kitchen, action, rng, parameters)
+    except SkillFailure:
+        return False
+    return True
+
+
+def confirm_obstruction(
+    kitchen: KitchenScene,
+    action: GroundedAction,
+    failure: SkillFailure,
+    rng: np.random.Generator,
+    parameters: SkillParameters = DEFAULT_PARAMETERS,
+) -> tuple[str, ...]:
+    """The fewest of ``failure.objects`` (a prefix, most often hit first) without which the
+    action's skill finds targets; () when none up to ``MAX_BLOCKERS`` does. The action's own
+    arguments are never blamed."""
+    candidates = [name for name in failure.objects if name not in action.args and name in kitchen.boxes]
+    for count in range(1, min(len(candidates), MAX_BLOCKERS) + 1):
+        blockers = tuple(candidates[:count])
+        with moved_away(kitchen, blockers):
+            if _finds_targets(kitchen, action, rng, parameters):
+                return blockers
+    return ()
+
+
+def confirm_unreachable(
+    kitchen: KitchenScene,
+    action: GroundedAction,
+    rng: np.random.Generator,
+    parameters: SkillParameters = DEFAULT_PARAMETERS,
+) -> bool:
+    """Whether the action's skill still finds no targets with every box it does not name (and
+    the hand does not hold) moved out of the scene."""
+    held = kitchen.held_box()
+    others = [name for name in kitchen.boxes if name not in action.args and name != held]
+    with moved_away(kitchen, others):
+        return not _finds_targets(kitchen, action, rng, parameters)
