@@ -38,6 +38,7 @@ from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task,
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
     KITCHEN_BUDGETS,
+    RefinementOptions,
     SesameRefinement,
     refine_with_sesame,
     sesame_replanner,
@@ -168,10 +169,8 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
         clock = time.perf_counter()
         budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans, samples_per_step=args.samples_per_step,
                           max_samples=args.max_samples)
-        outcome = refine_with_sesame(
-            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=on_sample,
-            feedback=not args.no_feedback,
-        )
+        options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
+        outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample)
         report.timing["refinement_s"] = time.perf_counter() - clock
         report.bilevel = outcome.report_data()
         refined = outcome.refined

@@ -33,7 +33,7 @@ from kitchen_tamp.bilevel import (
     relational_problem,
     sesame,
 )
-from kitchen_tamp.kitchen import KitchenScene, SkillFailure, abstract_state, apply_condition_effects
+from kitchen_tamp.kitchen import KitchenScene, SkillFailure, abstract_state, record_conditions
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, State, Task
 from kitchen_tamp.refinement.failure_feedback import FailureFeedback
@@ -117,12 +117,9 @@ class KitchenSampler:
                 state.restore(self.kitchen)
                 facts = self.feedback.facts(action, transition.source, record.skill_failure)
             raise SkillSamplingFailure(message, record.skill_failure, facts)
-        atoms = self.task.atoms
-        apply_condition_effects(
-            self.kitchen,
-            (atoms[i] for i in action.add_ids),
-            (atoms[i] for i in range(len(atoms)) if action.delete >> i & 1),
-        )
+        problem = record_conditions(self.kitchen, self.task, action)
+        if problem is not None:
+            raise SkillSamplingFailure(problem, None)
         self.records[id(trajectory)] = record
         return Trajectory((state, KitchenState.of(self.kitchen)), (trajectory,))
 
@@ -168,21 +165,32 @@ class SesameRefinement:
         }
 
 
+@dataclass(frozen=True)
+class RefinementOptions:
+    """How the kitchen's samples are drawn and what their failures teach."""
+
+    collision_model: str = DEFAULT_COLLISION_MODEL
+    """The collision model planning checks moves with (PyBullet always verifies)."""
+    feedback: bool = True
+    """Confirmed skill failures teach the abstract search (obstructions, places out of reach);
+    off, only the refinement of each plan reacts to them (resampling, backtracking)."""
+
+
+DEFAULT_OPTIONS: Final = RefinementOptions()
+
+
 def refine_with_sesame(
     kitchen: KitchenScene,
     task: Task,
     backend: MotionBackend,
     seed: int,
     budgets: SesameBudgets = KITCHEN_BUDGETS,
-    collision_model: str = DEFAULT_COLLISION_MODEL,
+    options: RefinementOptions = DEFAULT_OPTIONS,
     on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
-    feedback: bool = True,
 ) -> SesameRefinement:
-    """Run SeSamE from the scene as it is; on success the scene is left in the final state.
-    ``feedback``: confirmed skill failures teach the abstract search (else only the
-    refinement of each plan learns from them, by resampling and backtracking)."""
-    teacher = FailureFeedback(kitchen, task, np.random.default_rng(seed)) if feedback else None
-    sampler = KitchenSampler(kitchen, task, backend, collision_model, teacher)
+    """Run SeSamE from the scene as it is; on success the scene is left in the final state."""
+    teacher = FailureFeedback(kitchen, task, np.random.default_rng(seed)) if options.feedback else None
+    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher)
     initial = KitchenState.of(kitchen)
     problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
 
@@ -216,7 +224,8 @@ def sesame_replanner(
     to the task's goal (its initial state being the scene's), or None if it finds no plan."""
 
     def replan(kitchen: KitchenScene, task: Task) -> KitchenTrajectory | None:
-        refined = refine_with_sesame(kitchen, task, backend, seed, budgets, collision_model).refined
+        options = RefinementOptions(collision_model)
+        refined = refine_with_sesame(kitchen, task, backend, seed, budgets, options).refined
         return None if refined is None else refined.trajectory
 
     return replan

@@ -3,11 +3,14 @@
 A ``SkillFailure`` of kind ``obstructed`` names every box its refused candidates ran
 into, most often first; some of them may only have been grazed by candidates that
 failed for other reasons too. ``confirm_obstruction`` checks the names the way the
-failure claims them: with the first one (then the first two, the first three) moved
-out of the scene, the skill is sampled again, and the fewest boxes whose absence lets
-it find targets are the obstruction. ``confirm_unreachable`` checks a placement that
-found nothing to blame: with every other box moved out, if the skill still finds no
-targets, the place is out of the hand's reach whatever stands where.
+failure claims them: with all of them moved out of the scene the skill must find
+targets (else nothing is confirmed); then they are put back one by one, the least
+blamed first, and each one without which the skill still finds targets stays back.
+What is left out is the obstruction: no box of it can come back on its own (as far
+as the samples tell), and the boxes blamed most are the ones kept out.
+``confirm_unreachable`` checks a placement that found nothing to blame: with every
+other box moved out, if the skill still finds no targets, the place is out of the
+hand's reach whatever stands where.
 
 Both leave the scene as they found it, and draw from the generator they are given
 (the caller's own, so the planner's samples are not disturbed).
@@ -17,6 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from typing import Final
 
 import numpy as np
@@ -27,8 +31,9 @@ from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS, SkillPara
 from kitchen_tamp.kitchen.skills.registry import GroundedAction, sample_action_targets
 from kitchen_tamp.world import Pose
 
-MAX_BLOCKERS: Final = 3
-"""The most boxes one confirmed obstruction names (prefixes of the failure's list up to this)."""
+CONFIRMING_ATTEMPTS: Final = 20
+"""Candidates a confirming sample draws (the skill's own budget is 40): a box that seems needed
+out after 20 draws is kept out, which at worst makes the plan move one box more."""
 AWAY_DEPTH_M: Final = 50.0
 """How far below the floor a box moved out of the scene is put (each its own spot)."""
 
@@ -66,16 +71,22 @@ def confirm_obstruction(
     rng: np.random.Generator,
     parameters: SkillParameters = DEFAULT_PARAMETERS,
 ) -> tuple[str, ...]:
-    """The fewest of ``failure.objects`` (a prefix, most often hit first) without which the
-    action's skill finds targets; () when none up to ``MAX_BLOCKERS`` does. The action's own
-    arguments are never blamed."""
-    candidates = [name for name in failure.objects if name not in action.args and name in kitchen.boxes]
-    for count in range(1, min(len(candidates), MAX_BLOCKERS) + 1):
-        blockers = tuple(candidates[:count])
-        with moved_away(kitchen, blockers):
-            if _finds_targets(kitchen, action, rng, parameters):
-                return blockers
-    return ()
+    """The boxes of ``failure.objects`` the action's skill needs out of the way (most blamed
+    first), found as the module says; () when it finds no targets even with all of them out.
+    The action's own arguments are never blamed."""
+    confirming = replace(parameters, attempts=min(parameters.attempts, CONFIRMING_ATTEMPTS))
+    out = [name for name in failure.objects if name not in action.args and name in kitchen.boxes]
+    if not out:
+        return ()
+    with moved_away(kitchen, out):
+        if not _finds_targets(kitchen, action, rng, confirming):
+            return ()
+    for name in reversed(list(out)):
+        without = [other for other in out if other != name]
+        with moved_away(kitchen, without):
+            if _finds_targets(kitchen, action, rng, confirming):
+                out = without
+    return tuple(out)
 
 
 def confirm_unreachable(
