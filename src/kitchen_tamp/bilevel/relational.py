@@ -48,6 +48,10 @@ def relational_abstraction(
     )
 
 
+MAX_EXPANSIONS: Final = 5_000
+"""Nodes one enumeration of abstract plans may expand: what failures taught may leave no plan
+(two boxes each in the way of the other's grasp), and an enumeration over a large task would
+then never end; far above what the plans of the shipped problems take."""
 SHORTEST_FIRST_MAX_ACTIONS: Final = 200
 """Up to this many ground actions, abstract plans come shortest first (h_max); above it, best
 first by h_FF: h_max leaves the enumeration breadth-first, and a 400-action task then yields
@@ -100,7 +104,8 @@ class RelationalPlanGenerator:
         if initial != search_task.initial_state:
             search_task = search_task.starting_from(initial)
         heuristic: HeuristicName = "hmax" if len(self.task.actions) <= SHORTEST_FIRST_MAX_ACTIONS else "hff"
-        for actions in iter_plans(search_task, rng=rng, max_length=self.max_length, heuristic=heuristic):
+        for actions in iter_plans(search_task, rng=rng, max_length=self.max_length, heuristic=heuristic,
+                                  max_expansions=MAX_EXPANSIONS):
             states = [initial]
             for action in actions:
                 states.append(action.apply(states[-1]))

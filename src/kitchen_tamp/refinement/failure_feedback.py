@@ -12,8 +12,12 @@
   every placement onto that place is pruned (``Unreachable``), learned once: reach is the
   arm's, whatever it holds.
 
-Confirmations are kept, so a step sampled again from the same abstract state costs no
-second check; they draw from this object's own generator, never the planner's.
+A box is never blamed for the failure of an action on a box that was itself confirmed in
+its way (the learned preconditions would then ask each to be moved before the other,
+and no abstract plan would be left): the check keeps it in the scene, and finds another
+set of boxes, or none. Confirmations are kept, so a step sampled again from the same
+abstract state costs no second check; they draw from this object's own generator, never
+the planner's.
 """
 
 from __future__ import annotations
@@ -43,6 +47,8 @@ class FailureFeedback:
     rng: np.random.Generator
     obstructions: dict[tuple[ActionKey, State], tuple[Obstruction, ...]] = field(default_factory=dict)
     unreachable: dict[str, tuple[Unreachable, ...]] = field(default_factory=dict)
+    in_the_way: dict[str, set[str]] = field(default_factory=dict)
+    """Box -> the boxes confirmed in the way of an action on it."""
     confirmations: int = 0
     """Checks run (a skill sampled again with boxes moved out)."""
 
@@ -72,7 +78,12 @@ class FailureFeedback:
         self, action: GroundAction, source: State, failure: SkillFailure
     ) -> tuple[Obstruction, ...]:
         self.confirmations += 1
-        blockers = confirm_obstruction(self.kitchen, action, failure, self.rng)
+        bound = self.kitchen.map.binding.action(action.name)
+        subject = None if bound is None else bound.argument("object", action.args)
+        keep = {box for box, blockers in self.in_the_way.items() if subject in blockers}
+        blockers = confirm_obstruction(self.kitchen, action, failure, self.rng, keep=keep)
+        if subject is not None:
+            self.in_the_way.setdefault(subject, set()).update(blockers)
         binding = self.kitchen.map.binding
         predicates = {p for relation in LOCATION_RELATIONS for p in binding.predicates_for(relation)}
         absent = frozenset(atom for atom in self.task.state_atoms(source)

@@ -18,7 +18,7 @@ Both leave the scene as they found it, and draw from the generator they are give
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 from typing import Final
@@ -31,9 +31,10 @@ from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS, SkillPara
 from kitchen_tamp.kitchen.skills.registry import GroundedAction, sample_action_targets
 from kitchen_tamp.world import Pose
 
-CONFIRMING_ATTEMPTS: Final = 20
-"""Candidates a confirming sample draws (the skill's own budget is 40): a box that seems needed
-out after 20 draws is kept out, which at worst makes the plan move one box more."""
+PUT_BACK_ATTEMPTS: Final = 20
+"""Candidates the check of a box put back draws (the check with every named box out draws the
+skill's own budget, 40): a box that seems needed out after 20 draws is kept out, which at
+worst makes the plan move one box more."""
 AWAY_DEPTH_M: Final = 50.0
 """How far below the floor a box moved out of the scene is put (each its own spot)."""
 
@@ -70,21 +71,23 @@ def confirm_obstruction(
     failure: SkillFailure,
     rng: np.random.Generator,
     parameters: SkillParameters = DEFAULT_PARAMETERS,
+    keep: Collection[str] = (),
 ) -> tuple[str, ...]:
     """The boxes of ``failure.objects`` the action's skill needs out of the way (most blamed
     first), found as the module says; () when it finds no targets even with all of them out.
-    The action's own arguments are never blamed."""
-    confirming = replace(parameters, attempts=min(parameters.attempts, CONFIRMING_ATTEMPTS))
-    out = [name for name in failure.objects if name not in action.args and name in kitchen.boxes]
+    The action's own arguments, and the boxes in ``keep``, are never blamed (they stay)."""
+    put_back = replace(parameters, attempts=min(parameters.attempts, PUT_BACK_ATTEMPTS))
+    out = [name for name in failure.objects
+           if name not in action.args and name not in keep and name in kitchen.boxes]
     if not out:
         return ()
     with moved_away(kitchen, out):
-        if not _finds_targets(kitchen, action, rng, confirming):
+        if not _finds_targets(kitchen, action, rng, parameters):
             return ()
     for name in reversed(list(out)):
         without = [other for other in out if other != name]
         with moved_away(kitchen, without):
-            if _finds_targets(kitchen, action, rng, confirming):
+            if _finds_targets(kitchen, action, rng, put_back):
                 out = without
     return tuple(out)
 

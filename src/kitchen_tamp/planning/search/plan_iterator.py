@@ -72,13 +72,16 @@ def shortest_plans_first(
     *,
     rng: RandomSource | None = None,
     max_length: int | None = None,
+    max_expansions: int | None = None,
 ) -> Iterator[tuple[tuple[S, ...], tuple[A, ...]]]:
     """Every acyclic plan from ``initial`` as (states, actions), shortest first (lazily).
 
     ``remaining(state)``: a lower bound on the steps from ``state`` to a goal,
     ``math.inf`` where none is reachable (those states are never queued). Each
     queued node draws one ``rng.random()`` for its tie-break, the root first,
-    so a seeded source gives the same order every run.
+    so a seeded source gives the same order every run. ``max_expansions`` ends the
+    enumeration after that many nodes expanded (over all plans), so a task whose
+    plans lie beyond reach (or that has none) does not hold the caller for ever.
     """
 
     def tie() -> float:
@@ -89,6 +92,7 @@ def shortest_plans_first(
     order = itertools.count()
     heap: list[tuple[float, float, int, PathNode[S, A]]] = [
         (remaining(initial), tie(), next(order), PathNode(initial, None, None))]
+    expansions = 0
     while heap:
         _, _, _, node = heapq.heappop(heap)
         if is_goal(node.state):
@@ -96,6 +100,9 @@ def shortest_plans_first(
             continue  # a plan that passes through a goal state is not a new shortest plan
         if max_length is not None and node.length >= max_length:
             continue
+        expansions += 1
+        if max_expansions is not None and expansions > max_expansions:
+            return
         for action, child in successors(node.state):
             to_go = remaining(child)
             if to_go == math.inf or node.visits(child):
@@ -112,6 +119,7 @@ def iter_plans(
     rng: RandomSource | None = None,
     max_length: int | None = None,
     heuristic: HeuristicName = "hmax",
+    max_expansions: int | None = None,
 ) -> Iterator[tuple[GroundAction, ...]]:
     """Yield every acyclic plan of ``task`` (lazily: take what you need).
 
@@ -121,9 +129,9 @@ def iter_plans(
     best first instead, as in A* with that heuristic: on a large task the first plan
     comes after a few expansions where h_max's bound leaves the search breadth-first;
     a later plan may be shorter than an earlier one, and ``max_length`` bounds the
-    estimate rather than the plans' length.
+    estimate rather than the plans' length. ``max_expansions``: see ``shortest_plans_first``.
     """
     for _, actions in shortest_plans_first(
             task.initial_state, task.successors, task.is_goal, make_heuristic(task, heuristic),
-            rng=rng, max_length=max_length):
+            rng=rng, max_length=max_length, max_expansions=max_expansions):
         yield actions
