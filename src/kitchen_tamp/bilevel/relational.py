@@ -3,8 +3,11 @@
 Abstract states are the task's states (bitsets of atom ids), abstract actions
 its :class:`~kitchen_tamp.planning.GroundAction` s, successors and goal come
 from the task, and abstract plans from :func:`kitchen_tamp.planning.iter_plans`
-(shortest first, equal lengths in seeded random order; best first by h_FF on
-tasks of more than ``SHORTEST_FIRST_MAX_ACTIONS`` actions). The caller supplies
+(shortest first, equal lengths in seeded random order). On tasks of more than
+``SHORTEST_FIRST_MAX_ACTIONS`` actions the first plan comes from greedy best-first
+search (h_FF, the planning package's ``gbfs``) and the next ones best first by h_FF:
+shortest first is breadth-first there, and the relaxation behind h_FF does not see
+learned negative preconditions, so a tree search alone wanders. The caller supplies
 Psi as the atoms true in a low-level state, and one trajectory sampler per
 operator name.
 
@@ -24,7 +27,7 @@ import numpy as np
 from kitchen_tamp.bilevel.abstraction import Abstraction, AbstractPlan
 from kitchen_tamp.bilevel.feedback import ActionKey, LearnedFact, Obstruction, Unreachable
 from kitchen_tamp.bilevel.problem import BilevelProblem, TrajectorySampler
-from kitchen_tamp.planning import Atom, GroundAction, State, Task, atom_text, iter_plans
+from kitchen_tamp.planning import Atom, GroundAction, State, Task, atom_text, iter_plans, plan
 from kitchen_tamp.planning.heuristics import HeuristicName
 
 X = TypeVar("X")
@@ -53,9 +56,11 @@ MAX_EXPANSIONS: Final = 5_000
 (two boxes each in the way of the other's grasp), and an enumeration over a large task would
 then never end; far above what the plans of the shipped problems take."""
 SHORTEST_FIRST_MAX_ACTIONS: Final = 200
-"""Up to this many ground actions, abstract plans come shortest first (h_max); above it, best
-first by h_FF: h_max leaves the enumeration breadth-first, and a 400-action task then yields
-no plan in minutes."""
+"""Up to this many ground actions, abstract plans come shortest first (h_max); above it, the
+first from greedy best-first search and the next best first by h_FF: h_max leaves the
+enumeration breadth-first, and a 400-action task then yields no plan in minutes."""
+LARGE_TASK_SEARCH: Final = "gbfs"
+LARGE_TASK_SEARCH_S: Final = 60.0
 
 
 def key_of(action: GroundAction) -> ActionKey:
@@ -103,13 +108,17 @@ class RelationalPlanGenerator:
         search_task = self.current_task()
         if initial != search_task.initial_state:
             search_task = search_task.starting_from(initial)
-        heuristic: HeuristicName = "hmax" if len(self.task.actions) <= SHORTEST_FIRST_MAX_ACTIONS else "hff"
+        large = len(self.task.actions) > SHORTEST_FIRST_MAX_ACTIONS
+        first: tuple[GroundAction, ...] | None = None
+        if large:
+            first = plan(search_task, LARGE_TASK_SEARCH, time_budget=LARGE_TASK_SEARCH_S).plan
+            if first is not None:
+                yield _abstract_plan(initial, first)
+        heuristic: HeuristicName = "hff" if large else "hmax"
         for actions in iter_plans(search_task, rng=rng, max_length=self.max_length, heuristic=heuristic,
                                   max_expansions=MAX_EXPANSIONS):
-            states = [initial]
-            for action in actions:
-                states.append(action.apply(states[-1]))
-            yield AbstractPlan(tuple(states), actions)
+            if actions != first:
+                yield _abstract_plan(initial, actions)
 
     def learn(self, facts: Sequence[object]) -> list[object]:
         """Take in the obstructions and unreachable actions among ``facts`` not known yet."""
@@ -129,6 +138,13 @@ class RelationalPlanGenerator:
             if action is None or not action.applicable(state):
                 return False
         return True
+
+
+def _abstract_plan(initial: State, actions: tuple[GroundAction, ...]) -> AbstractPlan[State, GroundAction]:
+    states = [initial]
+    for action in actions:
+        states.append(action.apply(states[-1]))
+    return AbstractPlan(tuple(states), actions)
 
 
 def relational_plan_generator(task: Task, *, max_length: int | None = None) -> RelationalPlanGenerator:

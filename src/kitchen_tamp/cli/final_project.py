@@ -14,7 +14,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from kitchen_tamp.bilevel import SampleEvent
-from kitchen_tamp.bilevel.relational import SHORTEST_FIRST_MAX_ACTIONS
+from kitchen_tamp.bilevel.relational import LARGE_TASK_SEARCH, SHORTEST_FIRST_MAX_ACTIONS
 from kitchen_tamp.cli import exit_code_of
 from kitchen_tamp.cli.final_project_parser import build_parser
 from kitchen_tamp.cli.output_paths import OutputPathError, prepare_output_folder
@@ -49,8 +49,6 @@ from kitchen_tamp.world import UnknownNameError, WorldError
 SYMBOLIC_PLANNER = "bfs"
 """Search that gives the symbolic plan: breadth-first, so the plan is shortest."""
 SYMBOLIC_TIME_BUDGET_S = 60.0
-LARGE_TASK_PLANNER = "gbfs"
-"""The symbolic search for tasks too large for breadth-first search (``SHORTEST_FIRST_MAX_ACTIONS``)."""
 REPLAY_REPORT_FILE = "replay_report.json"
 
 
@@ -65,7 +63,7 @@ BAD_INPUT_ERRORS = (UsageError, OutputPathError, PlanningInputError, KitchenErro
 def symbolic_planner(task: Task) -> str:
     """Breadth-first search (a shortest plan), or greedy best-first on a large task, where
     SeSamE's abstract plans too come best first rather than shortest first."""
-    return SYMBOLIC_PLANNER if len(task.actions) <= SHORTEST_FIRST_MAX_ACTIONS else LARGE_TASK_PLANNER
+    return SYMBOLIC_PLANNER if len(task.actions) <= SHORTEST_FIRST_MAX_ACTIONS else LARGE_TASK_SEARCH
 
 
 def _check_display(args: argparse.Namespace) -> None:
