@@ -90,7 +90,8 @@ def test_problems_over_the_regions_domain_are_written_in_its_words_and_lay_out(t
     kitchen_map = load_kitchen_map(default_scene_path(), tmp_path / "domain.pddl")
     for problem in problems:
         task = load_task(problem.path, tmp_path / "domain.pddl")
-        assert {predicate for predicate, *_ in task.init_atoms} <= {"on", "in", "clear", "handempty", "opened"}
+        words = {"on", "in", "clear", "handempty", "opened"}
+        assert {predicate for predicate, *_ in task.init_atoms} <= words
         assert ("handempty",) in task.init_atoms
         with build_kitchen_for_task(task, kitchen_map=kitchen_map):
             pass
