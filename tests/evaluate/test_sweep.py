@@ -153,3 +153,12 @@ def test_a_problem_of_another_kitchen_is_swept_with_the_domain_a_run_finds(tmp_p
     assert main(["--problems", str(galley / "problem_swap.pddl"), "--seeds", "0", "--out", str(out),
                  "--run-command", FAKE_COMMAND]) == 0
     assert [row["status"] for row in read_rows(out / "results.csv")] == ["solved"]
+
+
+def test_the_benchmarks_set_is_swept_under_its_names(tmp_path: Path) -> None:
+    out = tmp_path / "sweep"
+    assert main(["--problem-set", "benchmarks", "--seeds", "0", "--out", str(out),
+                 "--run-command", FAKE_COMMAND, "--workers", "2"]) == 0
+    rows = read_rows(out / "results.csv")
+    assert len(rows) == 8 and {row["problem"] for row in rows} >= {"nonmonotonic", "towers-sussman"}
+    assert all(row["facts_learned"] == "0" for row in rows)
