@@ -38,6 +38,8 @@ from kitchen_tamp.evaluate.results_table import RESULTS_FILE, ResultsTableError
 from kitchen_tamp.evaluate.summary import write_summary
 from kitchen_tamp.evaluate.sweep import RUNS_DIR, SweepPlan, run_sweep
 from kitchen_tamp.evaluate.task_run import RunSettings, default_run_command
+from kitchen_tamp.kitchen import KitchenError
+from kitchen_tamp.kitchen.scene.choice import choose_scene
 from kitchen_tamp.planning import PlanningInputError, load_task
 from kitchen_tamp.shipped_kitchens import default_domain_path, domain_for, find_problem, kitchen_folder
 
@@ -103,8 +105,13 @@ def _problem_files(names: Sequence[str], domain: Path | None) -> list[Path]:
         path = find_problem(name)
         if not path.is_file():
             raise SweepUsageError(f"problem file not found: {name}")
-        # a malformed problem stops the sweep before it starts; its domain is found as a run finds it
+        # a malformed problem (or its domain's binding, or its scene) stops the sweep before it
+        # starts; its domain and scene are found as a run finds them
         load_task(path, domain if domain is not None else domain_for(path))
+        try:
+            choose_scene(path, None, domain).kitchen_map()
+        except KitchenError as error:
+            raise SweepUsageError(str(error)) from None
         problems.append(path.resolve())
     return problems
 
