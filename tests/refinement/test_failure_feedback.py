@@ -17,6 +17,7 @@ from kitchen_tamp.kitchen import (
     load_kitchen_map,
     sample_targets,
 )
+from kitchen_tamp.kitchen.skills.obstructions import confirm_unreachable
 from kitchen_tamp.planning import Task, load_task
 from kitchen_tamp.refinement import SamplingMotionBackend
 from kitchen_tamp.refinement.failure_feedback import FailureFeedback
@@ -62,8 +63,12 @@ def test_a_place_out_of_reach_prunes_every_placement_onto_it() -> None:
         sample_targets(kitchen, "pick", ("green", "table"), np.random.default_rng(0)).apply(kitchen)
         holding = task.state_from_atoms({("holding", "green")})
         action, failure = failure_of(kitchen, task, "place green far_plate")
-        facts = FailureFeedback(kitchen, task, np.random.default_rng(0)).facts(action, holding, failure)  # type: ignore[arg-type]
+        feedback = FailureFeedback(kitchen, task, np.random.default_rng(0))
+        facts = feedback.facts(action, holding, failure)  # type: ignore[arg-type]
         assert facts == (Unreachable("far_plate", frozenset({("place", ("green", "far_plate"))})),)
+        near = task.action_named("place", ["green", "plate"])
+        assert near is not None and not confirm_unreachable(kitchen, near, np.random.default_rng(0))
+        assert kitchen.held_box() == "green"  # the checks leave the scene as it was
 
 
 @pytest.mark.slow
