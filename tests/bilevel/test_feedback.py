@@ -126,3 +126,12 @@ def test_a_large_task_yields_plans_best_first_without_delay(family: str) -> None
     moves = [action.text for action in plan.actions]
     assert validate_plan(task, plan.actions).valid
     assert moves.index("(pick red1 table)") < moves.index("(pick blue2 table)")
+
+
+def test_facts_that_leave_no_plan_end_the_enumeration() -> None:
+    task = load_task(BENCHMARKS / "blocked" / "problem.pddl")
+    generator = relational_plan_generator(task)
+    on_table = {"green": ("on", "blocker", "table"), "blocker": ("on", "green", "table")}
+    generator.learn([Obstruction(("pick", (box, "table")), frozenset({atom}), (atom[1],))
+                     for box, atom in on_table.items()])  # each in the way of the other
+    assert next(generator(task.initial_state, np.random.default_rng(0)), None) is None
