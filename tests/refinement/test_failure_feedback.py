@@ -67,7 +67,7 @@ def test_a_place_out_of_reach_prunes_every_placement_onto_it() -> None:
         facts = feedback.facts(action, holding, failure)  # type: ignore[arg-type]
         assert facts == (Unreachable("far_plate", frozenset({("place", ("green", "far_plate"))})),)
         near = task.action_named("place", ["green", "plate"])
-        assert near is not None and not confirm_unreachable(kitchen, near, np.random.default_rng(0))
+        assert near is not None and not confirm_unreachable(kitchen, near, np.random.default_rng(0), "plate")
         assert kitchen.held_box() == "green"  # the checks leave the scene as it was
 
 

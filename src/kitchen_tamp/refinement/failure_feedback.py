@@ -8,9 +8,10 @@
   names the relations ``on_surface``, ``on_region``, ``on_box``, ``in_drawer``). The next
   abstract plan moves them first.
 * A placement (``place``, ``place_in``) that failed as ``unreachable`` is checked with
-  every other box moved out; if it still finds nothing, its place is out of reach, and
-  every placement onto that place is pruned (``Unreachable``), learned once: reach is the
-  arm's, whatever it holds.
+  every other box moved out; if it still finds nothing, and the empty hand reaches no pose
+  above the place either (the grasp may be to blame, not the place), its place is out of
+  reach, and every placement onto that place is pruned (``Unreachable``), learned once:
+  reach is the arm's, whatever it holds.
 
 A box is never blamed for the failure of an action on a box that was itself confirmed in
 its way (the learned preconditions would then ask each to be moved before the other,
@@ -94,7 +95,7 @@ class FailureFeedback:
 
     def _unreachable(self, action: GroundAction, place: str) -> tuple[Unreachable, ...]:
         self.confirmations += 1
-        if not confirm_unreachable(self.kitchen, action, self.rng):
+        if not confirm_unreachable(self.kitchen, action, self.rng, place):
             return ()
         pruned = frozenset((candidate.name, candidate.args) for candidate in self.task.actions
                            if self._placement_target(candidate) == place)

@@ -9,8 +9,10 @@ blamed first, and each one without which the skill still finds targets stays bac
 What is left out is the obstruction: no box of it can come back on its own (as far
 as the samples tell), and the boxes blamed most are the ones kept out.
 ``confirm_unreachable`` checks a placement that found nothing to blame: with every
-other box moved out, if the skill still finds no targets, the place is out of the
-hand's reach whatever stands where.
+other box moved out, the skill must still find no targets, and no pose of the empty
+hand pointing down above the place may be within the arm's reach (a placement can
+fail for the grasp the box is held by -- a long box held too low for a drawer -- and
+the place is then not to blame).
 
 Both leave the scene as they found it, and draw from the generator they are given
 (the caller's own, so the planner's samples are not disturbed).
@@ -27,6 +29,7 @@ import numpy as np
 
 from kitchen_tamp.kitchen.errors import SkillFailure
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
+from kitchen_tamp.kitchen.scene.layout import WORLD_FROM_TOOL_DOWN
 from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS, SkillParameters
 from kitchen_tamp.kitchen.skills.registry import GroundedAction, sample_action_targets
 from kitchen_tamp.world import Pose
@@ -35,6 +38,10 @@ PUT_BACK_ATTEMPTS: Final = 20
 """Candidates the check of a box put back draws (the check with every named box out draws the
 skill's own budget, 40): a box that seems needed out after 20 draws is kept out, which at
 worst makes the plan move one box more."""
+REACH_SAMPLES: Final = 40
+"""Points of a place tried before it is called out of the empty hand's reach."""
+REACH_HEIGHT_M: Final = 0.10
+"""How far above the place's face the pointing-down hand is asked to reach."""
 AWAY_DEPTH_M: Final = 50.0
 """How far below the floor a box moved out of the scene is put (each its own spot)."""
 
@@ -96,11 +103,31 @@ def confirm_unreachable(
     kitchen: KitchenScene,
     action: GroundedAction,
     rng: np.random.Generator,
+    place: str,
     parameters: SkillParameters = DEFAULT_PARAMETERS,
 ) -> bool:
-    """Whether the action's skill still finds no targets with every box it does not name (and
-    the hand does not hold) moved out of the scene."""
+    """Whether ``place`` is out of reach for ``action``: its skill still finds no targets with
+    every box it does not name (and the hand does not hold) moved out of the scene, and the
+    empty hand reaches no pose above the place (``hand_reaches_above``)."""
     held = kitchen.held_box()
     others = [name for name in kitchen.boxes if name not in action.args and name != held]
     with moved_away(kitchen, others):
-        return not _finds_targets(kitchen, action, rng, parameters)
+        if _finds_targets(kitchen, action, rng, parameters):
+            return False
+    return not hand_reaches_above(kitchen, place)
+
+
+def hand_reaches_above(kitchen: KitchenScene, place: str) -> bool:
+    """Whether some pose of the hand pointing down, ``REACH_HEIGHT_M`` above a point of the
+    place's face (``REACH_SAMPLES`` points, drawn from a fixed generator), has an IK solution
+    within the joint ranges. The scene is left as it was."""
+    region, rng = kitchen.region(place), np.random.default_rng(0)
+    rotation, origin = region.world_from_region.rotation, region.world_from_region.translation
+    with kitchen.scene.preserved():
+        for _ in range(REACH_SAMPLES):
+            x, y = rng.uniform(-1.0, 1.0, 2) * np.asarray(region.half_size)
+            above = rotation @ np.array([x, y, REACH_HEIGHT_M]) + origin
+            pose = Pose.from_rotation(above, WORLD_FROM_TOOL_DOWN)
+            if kitchen.ik.solve(pose, rng, seeds=[kitchen.home, kitchen.arm_configuration()]) is not None:
+                return True
+    return False
