@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from kitchen_tamp.evaluate.grid import GridError, TaskSpec, expand_grid, parse_seeds
+from kitchen_tamp.evaluate.problem_sets import problem_set
 
 
 def test_seed_ranges_expand_in_order_without_repeats() -> None:
@@ -41,3 +42,15 @@ def test_problems_with_one_name_in_two_folders_are_refused() -> None:
 def test_unknown_modes_are_refused() -> None:
     with pytest.raises(GridError, match="unknown mode 'prm'"):
         expand_grid([Path("/a/problem.pddl")], ["prm"], [0])
+
+
+def test_a_problem_set_names_its_problems_and_the_names_make_the_task_ids() -> None:
+    named = problem_set("benchmarks")
+    names = sorted(named.values())
+    assert names == ["blocked", "kitchen", "kitchen-radish", "nonmonotonic", "packed", "sort_clutter",
+                     "towers-reversal", "towers-sussman"]
+    assert all(path.is_file() and path.parent.parent.name == "benchmarks" for path in named)
+    tasks = expand_grid(list(named), ["rrt"], [3], named)
+    assert {task.task_id for task in tasks} >= {"towers-sussman-rrt-seed3", "blocked-rrt-seed3"}
+    with pytest.raises(ValueError, match="unknown problem set 'ipc'"):
+        problem_set("ipc")

@@ -15,11 +15,13 @@ from kitchen_tamp.evaluate.random_problems import (
     kitchen_objects,
     write_manifest,
 )
-from kitchen_tamp.kitchen import build_kitchen_for_task, default_kitchen_map
+from kitchen_tamp.kitchen import build_kitchen_for_task, default_kitchen_map, load_kitchen_map
 from kitchen_tamp.planning import load_task, plan, validate_plan
+from kitchen_tamp.shipped_kitchens import default_scene_path, kitchen_folder
 
 REPO = Path(__file__).resolve().parents[2]
 DOMAIN = REPO / "pddl" / "domain.pddl"
+REGIONS_DOMAIN = kitchen_folder("benchmarks") / "domain.pddl"
 
 
 def _texts(folder: Path) -> dict[str, str]:
@@ -74,11 +76,26 @@ def test_objects_come_from_the_kitchen_map(tmp_path: Path) -> None:
         assert {name for name, kind in objects.items() if kind == "box"} == {"spam"}
 
 
-def test_a_domain_without_the_kitchen_predicates_is_refused(tmp_path: Path) -> None:
+def test_a_domain_without_a_binding_is_refused(tmp_path: Path) -> None:
     domain = tmp_path / "domain.pddl"
     domain.write_text(DOMAIN.read_text().replace("cabClear", "drawerClear"))
-    with pytest.raises(RandomProblemError, match=r"\(cabClear\) with 1 arguments"):
+    with pytest.raises(RandomProblemError, match=r"no skill binding for domain 'kitchen'"):
         generate_problems(1, 0, tmp_path / "out", domain)
+
+
+@pytest.mark.slow
+def test_problems_over_the_regions_domain_are_written_in_its_words_and_lay_out(tmp_path: Path) -> None:
+    problems = generate_problems(3, 0, tmp_path, REGIONS_DOMAIN)
+    assert (tmp_path / "domain.binding.toml").is_file()  # copied beside the domain
+    kitchen_map = load_kitchen_map(default_scene_path(), tmp_path / "domain.pddl")
+    for problem in problems:
+        task = load_task(problem.path, tmp_path / "domain.pddl")
+        words = {"on", "in", "clear", "handempty", "opened"}
+        assert {predicate for predicate, *_ in task.init_atoms} <= words
+        assert ("handempty",) in task.init_atoms
+        with build_kitchen_for_task(task, kitchen_map=kitchen_map):
+            pass
+        assert problem.solvable == plan(task, "bfs").solved
 
 
 def test_manifest_lists_every_problem(tmp_path: Path) -> None:

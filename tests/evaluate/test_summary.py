@@ -11,7 +11,8 @@ from kitchen_tamp.evaluate.summary import summary_text
 def _row(problem: str, seed: int, status: str, stage: str = "") -> dict[str, str]:
     row = dict.fromkeys(COLUMNS, "")
     row.update(problem=problem, mode="rrt", seed=str(seed), status=status, failure_stage=stage,
-               task_id=f"{problem}-rrt-seed{seed}", wall_s="3.0", path_length_rad="12.5")
+               task_id=f"{problem}-rrt-seed{seed}", wall_s="3.0", path_length_rad="12.5",
+               abstract_plans_tried=str(1 + seed), facts_learned=str(seed))
     return row
 
 
@@ -26,8 +27,8 @@ def test_random_problems_are_pooled_and_counted(tmp_path: Path) -> None:
         _row("random-001", 0, "failed", "symbolic"),
     ]
     text = summary_text(tmp_path, rows, manifest)
-    assert "| problem | rrt | 1/1 | 100% [21, 100] | 3.0 | 3.0 | 12.5 | - | - |" in text
-    assert "| random (2 problems) | rrt | 2/3 | 67% [21, 94] |" in text
+    assert "| problem | rrt | 1/1 | 100% [21, 100] | 3.0 | 3.0 | 1 | 0 | 12.5 | - | - |" in text
+    assert "| random (2 problems) | rrt | 2/3 | 67% [21, 94] | 3.0 | 3.0 | 1 | 0 |" in text
     assert "| random-000 |" not in text  # single random problems only in the pooled row
     assert "symbolic 1" in text
     assert "- generated: 2, each laid out in the kitchen (1 at the first start drawn)" in text

@@ -153,3 +153,27 @@ def test_a_problem_of_another_kitchen_is_swept_with_the_domain_a_run_finds(tmp_p
     assert main(["--problems", str(galley / "problem_swap.pddl"), "--seeds", "0", "--out", str(out),
                  "--run-command", FAKE_COMMAND]) == 0
     assert [row["status"] for row in read_rows(out / "results.csv")] == ["solved"]
+
+
+def test_the_benchmarks_set_is_swept_under_its_names(tmp_path: Path) -> None:
+    out = tmp_path / "sweep"
+    assert main(["--problem-set", "benchmarks", "--seeds", "0", "--out", str(out),
+                 "--run-command", FAKE_COMMAND, "--workers", "2"]) == 0
+    rows = read_rows(out / "results.csv")
+    assert len(rows) == 8 and {row["problem"] for row in rows} >= {"nonmonotonic", "towers-sussman"}
+    assert all(row["facts_learned"] == "0" for row in rows)
+
+
+def test_a_problem_whose_binding_is_bad_stops_the_sweep_before_it_starts(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    towers = Path(__file__).resolve().parents[2] / "src" / "kitchen_tamp" / "shipped_kitchens" / "benchmarks"
+    for name in ("domain.pddl", "towers/scene.toml", "towers/problem_sussman.pddl"):
+        (tmp_path / Path(name).name).write_text((towers / name).read_text())
+    binding = (towers / "domain.binding.toml").read_text()
+    (tmp_path / "domain.binding.toml").write_text(binding[:binding.index("[actions.cook]")])
+    assert main(["--problems", str(tmp_path / "problem_sussman.pddl"), "--out", str(tmp_path / "sweep"),
+                 "--run-command", FAKE_COMMAND]) == 2
+    error = capsys.readouterr().err.strip()
+    assert error.endswith("actions.cook: the domain's action 'cook' has no skill binding")
+    assert "\n" not in error

@@ -12,8 +12,9 @@ actions a; knows nothing of PyBullet or the kitchen. Typical use::
 Planners: :func:`abstract_bfs`, :func:`sesame` and, as SeSamE with smaller
 budgets, :func:`backtracking_refinement` (one abstract plan) and
 :func:`greedy_refinement` (one plan, one sample per step). Relational
-abstractions from a PDDL task: :mod:`kitchen_tamp.bilevel.relational`. A toy
-domain: :mod:`kitchen_tamp.bilevel.toy_rooms`.
+abstractions from a PDDL task: :mod:`kitchen_tamp.bilevel.relational`; failures
+that teach the abstract search (obstructions, places out of reach):
+:mod:`kitchen_tamp.bilevel.feedback`. A toy domain: :mod:`kitchen_tamp.bilevel.toy_rooms`.
 """
 
 from kitchen_tamp.bilevel.abstract_bfs import abstract_bfs
@@ -25,6 +26,12 @@ from kitchen_tamp.bilevel.abstraction import (
     AbstractTransition,
 )
 from kitchen_tamp.bilevel.budgets import SesameBudgets
+from kitchen_tamp.bilevel.feedback import (
+    LearningPlanGenerator,
+    Obstruction,
+    Unreachable,
+    fact_text,
+)
 from kitchen_tamp.bilevel.planning_graph import (
     AbstractActionEdge,
     AbstractorEdge,
@@ -66,6 +73,8 @@ __all__ = [
     "BilevelProblem",
     "BilevelResult",
     "FailedSample",
+    "LearningPlanGenerator",
+    "Obstruction",
     "Outcome",
     "PlanAttempt",
     "PlanningCounts",
@@ -80,9 +89,11 @@ __all__ = [
     "StepSamplingRecord",
     "Trajectory",
     "TrajectorySampler",
+    "Unreachable",
     "abstract_bfs",
     "backtracking_refinement",
     "concatenate",
+    "fact_text",
     "greedy_refinement",
     "plan_reaches_goal",
     "relational_abstraction",

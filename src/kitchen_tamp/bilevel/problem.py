@@ -22,7 +22,13 @@ class SamplingFailure(Exception):
 
     The message says why (``"doorway B-C is blocked by crate"``, ``"no IK solution
     for grasp 3"``); planners count it and record it, then sample again or backtrack.
+    ``feedback`` are facts for the abstract level (``kitchen_tamp.bilevel.feedback``): a
+    plan generator that learns takes them in.
     """
+
+    def __init__(self, message: str, feedback: tuple[object, ...] = ()) -> None:
+        super().__init__(message)
+        self.feedback = feedback
 
 
 class TrajectorySampler(Protocol[X, U, S, A]):

@@ -23,6 +23,7 @@ class Outcome(StrEnum):
     STEPS_EXHAUSTED = "every sample of the first step was tried"
     NO_ABSTRACT_PLAN = "no more abstract plans"
     GRAPH_EXHAUSTED = "no abstract state left to expand"
+    PLAN_REFUTED = "a fact learned from a failure rules the abstract plan out"
     PLAN_BUDGET = "abstract plan budget spent"
     PLAN_SAMPLE_BUDGET = "sample budget of this abstract plan spent"
     SAMPLE_BUDGET = "sample budget spent"
@@ -137,6 +138,9 @@ class BilevelResult(Generic[X, U, S, A]):
     outcome: Outcome
     detail: str
     seconds: float
+    learned: tuple[object, ...] = ()
+    """Facts the plan generator learned from failures, in the order learned
+    (``kitchen_tamp.bilevel.feedback``)."""
 
     @property
     def solved(self) -> bool:

@@ -27,6 +27,13 @@ bounds one plan of ``n`` steps at ``K + K**2 + ... + K**n`` samples for
 ``K = samples_per_step``, as in the original SeSamE (Silver et al., "Learning
 Symbolic Operators for Task and Motion Planning", 2021), whose low-level search
 also counts every try of a step.
+
+Failure feedback (``kitchen_tamp.bilevel.feedback``): when the plan generator
+learns (``LearningPlanGenerator``), every failed sample's ``feedback`` is handed
+to it. If it learned something new that rules the current plan out, the plan is
+dropped at once (``Outcome.PLAN_REFUTED``) rather than backtracked over, and the
+following plans come from a fresh enumeration over what it knows now, skipping
+plans already tried.
 """
 
 from __future__ import annotations
@@ -39,6 +46,7 @@ import numpy as np
 from kitchen_tamp.bilevel.abstract_plans import shortest_first_plans
 from kitchen_tamp.bilevel.abstraction import AbstractPlan, AbstractPlanGenerator
 from kitchen_tamp.bilevel.budgets import DEFAULT_BUDGETS, SesameBudgets
+from kitchen_tamp.bilevel.feedback import LearningPlanGenerator, fact_text
 from kitchen_tamp.bilevel.problem import BilevelProblem
 from kitchen_tamp.bilevel.results import (
     BilevelResult,
@@ -76,11 +84,33 @@ def plan_generator_of(problem: BilevelProblem[X, U, S, A]) -> AbstractPlanGenera
     return shortest_first_plans(problem.abstraction.successors, problem.abstraction.is_goal)
 
 
+@dataclass
+class _Learning(Generic[S, A]):
+    """What the failures taught the plan generator (nothing, if it does not learn)."""
+
+    generator: AbstractPlanGenerator[S, A]
+    facts: list[object]
+
+    def refutes(self, session: SamplingSession[X, U, S, A], plan: AbstractPlan[S, A]) -> str | None:
+        """Feed the last failed sample's facts to the generator; the new fact that rules ``plan``
+        out, in words, or None."""
+        generator = self.generator
+        feedback = session.graph.failed_samples[-1].error.feedback
+        if not feedback or not isinstance(generator, LearningPlanGenerator):
+            return None
+        new = generator.learn(feedback)
+        self.facts.extend(new)
+        if new and not generator.admits(plan):
+            return "; ".join(fact_text(fact) for fact in new)
+        return None
+
+
 def _refine_with_backtracking(
     session: SamplingSession[X, U, S, A],
     abstract_plan: AbstractPlan[S, A],
     plan_index: int,
     budgets: SesameBudgets,
+    learning: _Learning[S, A],
 ) -> tuple[PlanAttempt[S, A], int | None]:
     """Refine one abstract plan: the attempt's record and the final state node (``None`` on failure)."""
     samples_per_step, max_samples_per_plan = budgets.samples_per_step, budgets.max_samples_per_plan
@@ -123,11 +153,21 @@ def _refine_with_backtracking(
         if node is None:
             counters[step].failures += 1
             counters[step].last_failure = session.graph.failed_samples[-1].message
+            refuted = learning.refutes(session, abstract_plan)
+            if refuted is not None:
+                return attempt(Outcome.PLAN_REFUTED, f"step {step + 1} ({counters[step].action}): "
+                                                     f"{refuted}"), None
             continue
         step += 1
         nodes[step] = node
         deepest = max(deepest, min(step, len(transitions) - 1))
     return attempt(Outcome.SOLVED, f"refined in {plan_samples} samples"), nodes[-1]
+
+
+def _plan_words(plan: AbstractPlan[S, A]) -> tuple[str, ...]:
+    """A plan's actions as text: a plan enumerated again after learning has actions with more
+    preconditions, but is the same plan."""
+    return tuple(str(action) for action in plan.actions)
 
 
 def sesame(
@@ -146,8 +186,10 @@ def sesame(
     plan_seed, sample_seed = np.random.SeedSequence(seed).spawn(2)
     session = SamplingSession(problem, np.random.default_rng(sample_seed),
                               Budget(budgets.max_samples, budgets.time_budget_s), on_sample)
-    plans = plan_generator_of(problem)(session.graph.abstract_state_of(session.root),
-                                       np.random.default_rng(plan_seed))
+    learning = _Learning(plan_generator_of(problem), [])
+    initial, plan_rng = session.graph.abstract_state_of(session.root), np.random.default_rng(plan_seed)
+    plans = learning.generator(initial, plan_rng)
+    known = 0  # facts the current enumeration was started with
     attempts: list[PlanAttempt[S, A]] = []
 
     def result(outcome: Outcome, detail: str, node: int | None = None) -> BilevelResult[X, U, S, A]:
@@ -159,7 +201,7 @@ def sesame(
         )
         plan = None if node is None else session.refined_plan(node)
         return BilevelResult(planner, plan, session.graph, counts, tuple(attempts), outcome, detail,
-                             session.elapsed())
+                             session.elapsed(), tuple(learning.facts))
 
     def failure_detail(outcome: Outcome) -> str:
         tried = f"{outcome.value} after {len(attempts)} abstract plan(s)"
@@ -171,10 +213,13 @@ def sesame(
         spent = session.budget_spent()
         if spent is not None:
             return result(spent, failure_detail(spent))
-        abstract_plan = next(plans, None)
+        if len(learning.facts) > known:  # plan again with what the failures taught
+            plans, known = learning.generator(initial, plan_rng), len(learning.facts)
+        tried = {_plan_words(attempt.abstract_plan) for attempt in attempts}
+        abstract_plan = next((plan for plan in plans if _plan_words(plan) not in tried), None)
         if abstract_plan is None:
             return result(Outcome.NO_ABSTRACT_PLAN, failure_detail(Outcome.NO_ABSTRACT_PLAN))
-        attempt, node = _refine_with_backtracking(session, abstract_plan, len(attempts), budgets)
+        attempt, node = _refine_with_backtracking(session, abstract_plan, len(attempts), budgets, learning)
         attempts.append(attempt)
         if node is not None:
             return result(Outcome.SOLVED, f"abstract plan {len(attempts)}: {attempt.detail}", node)

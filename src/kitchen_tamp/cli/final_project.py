@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from kitchen_tamp.bilevel import SampleEvent
+from kitchen_tamp.bilevel.relational import LARGE_TASK_SEARCH, SHORTEST_FIRST_MAX_ACTIONS
 from kitchen_tamp.cli import exit_code_of
 from kitchen_tamp.cli.final_project_parser import build_parser
 from kitchen_tamp.cli.output_paths import OutputPathError, prepare_output_folder
@@ -36,10 +37,11 @@ from kitchen_tamp.kitchen import KitchenError, build_kitchen_for_task
 from kitchen_tamp.kitchen.scene.choice import SceneChoice, choose_scene
 from kitchen_tamp.motion import planner_options
 from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError, nonlinear_solver
-from kitchen_tamp.planning import GroundAction, PlanningInputError, State, load_task, plan
+from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
     KITCHEN_BUDGETS,
+    RefinementOptions,
     SesameRefinement,
     refine_with_sesame,
     sesame_replanner,
@@ -59,6 +61,12 @@ class UsageError(Exception):
 
 BAD_INPUT_ERRORS = (UsageError, OutputPathError, PlanningInputError, KitchenError, TrajectoryFileError)
 """Errors in what the user gave (options, files, output folder): one line, exit 2."""
+
+
+def symbolic_planner(task: Task) -> str:
+    """Breadth-first search (a shortest plan), or greedy best-first on a large task, where
+    SeSamE's abstract plans too come best first rather than shortest first."""
+    return SYMBOLIC_PLANNER if len(task.actions) <= SHORTEST_FIRST_MAX_ACTIONS else LARGE_TASK_SEARCH
 
 
 def _check_display(args: argparse.Namespace) -> None:
@@ -136,7 +144,8 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     task = load_task(problem, domain)
     prepare_output_folder(out_dir, "--out" if args.out else "output folder")
     inputs = RunInputs.of({"problem": problem, "domain": domain, "scene": scene})
-    report = RunReport(problem, domain, args.mode, backend.name, args.seed, SYMBOLIC_PLANNER, scene=scene)
+    planner = symbolic_planner(task)
+    report = RunReport(problem, domain, args.mode, backend.name, args.seed, planner, scene=scene)
     report.inputs, report.started = inputs.data(), started
     with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
         live = start_live_viewer(kitchen) if args.meshcat else None
@@ -149,20 +158,20 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
 
         report.timing["startup_s"] = time.perf_counter() - started
         clock = time.perf_counter()
-        result = plan(task, SYMBOLIC_PLANNER, time_budget=SYMBOLIC_TIME_BUDGET_S)
+        result = plan(task, planner, time_budget=SYMBOLIC_TIME_BUDGET_S)
         report.timing["symbolic_s"] = time.perf_counter() - clock
         if result.plan is None:
             report.fail("symbolic", f"no symbolic plan: {result.message}")
             return finish(report, out_dir, inputs)
         report.plan = [action.text for action in result.plan]
-        say(f"{problem.name}: shortest plan has {len(result.plan)} actions; refining with SeSamE and "
+        which = "shortest plan" if planner == SYMBOLIC_PLANNER else f"{planner} plan"
+        say(f"{problem.name}: {which} has {len(result.plan)} actions; refining with SeSamE and "
             f"{backend.name} (seed {args.seed})")
         clock = time.perf_counter()
         budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans, samples_per_step=args.samples_per_step,
                           max_samples=args.max_samples)
-        outcome = refine_with_sesame(
-            kitchen, task, backend, args.seed, budgets, args.collision_model, on_sample=on_sample
-        )
+        options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
+        outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample)
         report.timing["refinement_s"] = time.perf_counter() - clock
         report.bilevel = outcome.report_data()
         refined = outcome.refined

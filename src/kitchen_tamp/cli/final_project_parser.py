@@ -62,6 +62,9 @@ def _add_planning_options(sub: argparse.ArgumentParser, mode: str) -> None:
                                        "steps back (default %(default)s)")
     sub.add_argument("--max-samples", type=_integer_at_least(1), default=KITCHEN_BUDGETS.max_samples,
                      metavar="N", help="samples over the whole run (default %(default)s)")
+    sub.add_argument("--no-feedback", action="store_true",
+                     help="skill failures do not teach the abstract search (no learned obstructions, "
+                          "no pruned places); for comparison")
     sub.add_argument("--collision-model", choices=sorted(COLLISION_MODELS), default=DEFAULT_COLLISION_MODEL,
                      help="collision model for planning (default %(default)s; PyBullet always verifies)")
     if mode == "optimizes":

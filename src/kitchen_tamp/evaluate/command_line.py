@@ -26,6 +26,7 @@ from kitchen_tamp.evaluate.grid import (
     parse_seeds,
 )
 from kitchen_tamp.evaluate.local_pool import available_cores
+from kitchen_tamp.evaluate.problem_sets import PROBLEM_SETS, problem_set
 from kitchen_tamp.evaluate.random_problems import (
     RANDOM_PROBLEMS_DIR,
     RandomProblemError,
@@ -37,6 +38,8 @@ from kitchen_tamp.evaluate.results_table import RESULTS_FILE, ResultsTableError
 from kitchen_tamp.evaluate.summary import write_summary
 from kitchen_tamp.evaluate.sweep import RUNS_DIR, SweepPlan, run_sweep
 from kitchen_tamp.evaluate.task_run import RunSettings, default_run_command
+from kitchen_tamp.kitchen import KitchenError
+from kitchen_tamp.kitchen.scene.choice import choose_scene
 from kitchen_tamp.planning import PlanningInputError, load_task
 from kitchen_tamp.shipped_kitchens import default_domain_path, domain_for, find_problem, kitchen_folder
 
@@ -61,6 +64,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="problem files; bare names are also looked up in the shipped kitchens "
                              "(default: the default kitchen's problem*.pddl unless --random-problems "
                              "is given)")
+    parser.add_argument("--problem-set", choices=PROBLEM_SETS,
+                        help="also sweep a named set of shipped problems: 'benchmarks' is every problem "
+                             "of the benchmark families (docs/tamp.md), each named after its family")
     parser.add_argument("--domain", type=Path,
                         help="domain file (default: domain.pddl beside each problem, else the shipped one)")
     parser.add_argument("--modes", nargs="+", choices=MODES, default=["rrt"], help="default: rrt")
@@ -99,8 +105,13 @@ def _problem_files(names: Sequence[str], domain: Path | None) -> list[Path]:
         path = find_problem(name)
         if not path.is_file():
             raise SweepUsageError(f"problem file not found: {name}")
-        # a malformed problem stops the sweep before it starts; its domain is found as a run finds it
+        # a malformed problem (or its domain's binding, or its scene) stops the sweep before it
+        # starts; its domain and scene are found as a run finds them
         load_task(path, domain if domain is not None else domain_for(path))
+        try:
+            choose_scene(path, None, domain).kitchen_map()
+        except KitchenError as error:
+            raise SweepUsageError(str(error)) from None
         problems.append(path.resolve())
     return problems
 
@@ -139,12 +150,14 @@ def plan_sweep(args: argparse.Namespace, argv: Sequence[str]) -> SweepPlan:
     if args.domain is not None and not args.domain.is_file():
         raise SweepUsageError(f"domain file not found: {args.domain}")
     names = args.problems
-    if not names and not args.random_problems:
+    if not names and not args.random_problems and not args.problem_set:
         names = sorted(str(path) for path in kitchen_folder().glob("problem*.pddl"))
     problems = _problem_files(names, args.domain)
+    in_set = problem_set(args.problem_set) if args.problem_set else {}
+    problems += _problem_files([str(path) for path in in_set], args.domain)
     seeds = parse_seeds(args.seeds)
     _check_out_dir(args.out, args.resume)
-    tasks: list[TaskSpec] = expand_grid(problems, args.modes, seeds)
+    tasks: list[TaskSpec] = expand_grid(problems, args.modes, seeds, in_set)
     if args.random_problems:
         domain = args.domain or default_domain_path()
         folder = args.out / RANDOM_PROBLEMS_DIR
@@ -153,7 +166,7 @@ def plan_sweep(args: argparse.Namespace, argv: Sequence[str]) -> SweepPlan:
         random_seeds = parse_seeds(args.random_seeds) if args.random_seeds else seeds
         random_paths = [problem.path.resolve() for problem in generated]
         tasks += expand_grid(random_paths, args.random_modes or args.modes, random_seeds)
-        check_distinct_names([task.problem for task in tasks])
+        check_distinct_names([task.problem for task in tasks], in_set)
     command = tuple(shlex.split(args.run_command)) if args.run_command else default_run_command()
     extra = tuple(args.run_arg) + (("--domain", str(args.domain.resolve())) if args.domain else ())
     _log_command(args.out, argv)

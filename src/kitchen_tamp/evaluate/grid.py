@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -21,6 +21,8 @@ class TaskSpec:
     problem: Path
     mode: str
     seed: int
+    name: str | None = None
+    """What the results table calls the problem (None: the file's stem)."""
 
     def __post_init__(self) -> None:
         if self.mode not in MODES:
@@ -30,8 +32,8 @@ class TaskSpec:
 
     @property
     def problem_name(self) -> str:
-        """The problem's file stem, as the results table names it."""
-        return self.problem.stem
+        """The problem's name in the results table: its set's name for it, else its file stem."""
+        return self.name or self.problem.stem
 
     @property
     def task_id(self) -> str:
@@ -56,20 +58,28 @@ def parse_seeds(text: str) -> tuple[int, ...]:
     return tuple(seeds)
 
 
-def check_distinct_names(problems: Sequence[Path]) -> None:
-    """Raise ``GridError`` when two different problem files share a file stem (task ids would clash)."""
-    stems: dict[str, Path] = {}
+def check_distinct_names(problems: Sequence[Path], names: Mapping[Path, str] | None = None) -> None:
+    """Raise ``GridError`` when two different problem files share a name (their ``names``
+    entry, else their file stem): task ids would clash."""
+    seen: dict[str, Path] = {}
     for problem in problems:
-        other = stems.setdefault(problem.stem, problem)
+        name = (names or {}).get(problem, problem.stem)
+        other = seen.setdefault(name, problem)
         if other != problem:
-            raise GridError(f"two problems are both named {problem.stem!r}: {other} and {problem}")
+            raise GridError(f"two problems are both named {name!r}: {other} and {problem}")
 
 
-def expand_grid(problems: Sequence[Path], modes: Sequence[str], seeds: Sequence[int]) -> list[TaskSpec]:
-    """Every (problem, mode, seed), problem-major, without repeats."""
-    check_distinct_names(problems)
+def expand_grid(
+    problems: Sequence[Path],
+    modes: Sequence[str],
+    seeds: Sequence[int],
+    names: Mapping[Path, str] | None = None,
+) -> list[TaskSpec]:
+    """Every (problem, mode, seed), problem-major, without repeats; ``names`` name problems
+    whose file stem would not do (a problem set's)."""
+    check_distinct_names(problems, names)
     return [
-        TaskSpec(problem, mode, seed)
+        TaskSpec(problem, mode, seed, (names or {}).get(problem))
         for problem in dict.fromkeys(problems)
         for mode in dict.fromkeys(modes)
         for seed in dict.fromkeys(seeds)

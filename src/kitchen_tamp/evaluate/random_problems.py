@@ -1,10 +1,13 @@
 """Random kitchen problems: random valid starts of the kitchen's objects and random goals over them.
 
-The objects come from the kitchen map (the default kitchen's map: its surfaces, openables
-and boxes) and their types and predicates from the domain file, so a kitchen
-with other objects gets other problems. A start puts some of the boxes, one per
-place and leaving a place free, on surfaces or in openables, each openable open or closed; a goal asks
-for some of them in other places. A start is kept only if the kitchen lays it
+The objects come from the kitchen map (the default kitchen's map, with the domain's
+binding: its surfaces, openables and boxes), and the types and predicates a problem is
+written with from the domain's binding (``Vocabulary``: the predicate of each relation a
+start or goal needs), so a kitchen with other objects gets other problems and a domain
+bound otherwise (the seed's kitchen domain, the regions domain) gets problems in its own
+words. A start puts some of the boxes, one per place and leaving a place free, on
+surfaces or in openables, each openable open or closed; a goal asks for some of them in
+other places. A start is kept only if the kitchen lays it
 out (``build_kitchen`` checks Ψ of the built scene against ``:init``); every
 kept problem is also planned symbolically, and whether it has a plan is
 recorded: generality is measured over all of them, not only the easy ones.
@@ -21,16 +24,13 @@ from pathlib import Path
 import numpy as np
 
 from kitchen_tamp.atomic_files import write_atomically
-from kitchen_tamp.kitchen import KitchenError, KitchenMap, build_kitchen, default_kitchen_map
+from kitchen_tamp.kitchen import DomainBinding, KitchenError, KitchenMap, build_kitchen, load_kitchen_map
 from kitchen_tamp.kitchen.binding_reader import binding_path_for
 from kitchen_tamp.planning import Atom, atom_text, load_task, plan
 from kitchen_tamp.planning.loading import domain_model
+from kitchen_tamp.shipped_kitchens import default_scene_path
 
-ON, IN, OPENED = "boxOn", "boxIn", "opened"
-SURFACE_CLEAR, OPENABLE_CLEAR, ARM_CLEAR = "surfClear", "cabClear", "armClear"
-PREDICATE_ARITIES = {ON: 2, IN: 2, OPENED: 1, SURFACE_CLEAR: 1, OPENABLE_CLEAR: 1, ARM_CLEAR: 0}
-"""The domain predicates a random problem is written with."""
-KITCHEN_TYPES = ("surface", "openable", "box")
+KITCHEN_KINDS = ("surface", "openable", "box")
 MAX_LAYOUT_ATTEMPTS = 50
 """Random starts drawn for one problem before giving up on the kitchen laying any of them out."""
 SYMBOLIC_PLANNER = "bfs"
@@ -45,19 +45,64 @@ class RandomProblemError(Exception):
 
 
 @dataclass(frozen=True)
+class Vocabulary:
+    """The words a random problem is written in, from the domain's binding: the predicate of each
+    relation (``None``: the domain has none, and the problem goes without it) and the type of
+    each kind."""
+
+    on_surface: str
+    in_drawer: str
+    opened: str
+    hand_empty: str
+    surface_clear: str | None
+    drawer_clear: str | None
+    box_clear: str | None
+    types: dict[str, str]
+
+    @staticmethod
+    def of(binding: DomainBinding, domain: Path) -> Vocabulary:
+        """The vocabulary of ``binding``; ``RandomProblemError`` naming what a start needs and
+        the binding lacks."""
+
+        def predicate(relation: str) -> str | None:
+            names = binding.predicates_for(relation)
+            return names[0] if names else None
+
+        required = {relation: predicate(relation) for relation in ("on_surface", "in_drawer", "opened",
+                                                                    "hand_empty")}
+        for relation, name in required.items():
+            if name is None:
+                raise RandomProblemError(f"{domain}: random problems need a predicate for the relation "
+                                         f"{relation!r} (the domain's binding has none)")
+        types = {kind: binding.types.get(kind) for kind in KITCHEN_KINDS}
+        for kind, type_name in types.items():
+            if type_name is None:
+                raise RandomProblemError(f"{domain}: the domain has no type for the kitchen's {kind}s")
+        return Vocabulary(
+            on_surface=str(required["on_surface"]), in_drawer=str(required["in_drawer"]),
+            opened=str(required["opened"]), hand_empty=str(required["hand_empty"]),
+            surface_clear=predicate("surface_clear"), drawer_clear=predicate("drawer_clear"),
+            box_clear=predicate("box_clear"), types={kind: str(name) for kind, name in types.items()},
+        )
+
+
+@dataclass(frozen=True)
 class KitchenObjects:
     """The kitchen's objects by PDDL type, as the kitchen map has them."""
 
     surfaces: tuple[str, ...]
     openables: tuple[str, ...]
     boxes: tuple[str, ...]
+    words: Vocabulary
+    kitchen_map: KitchenMap
 
     @property
     def places(self) -> tuple[str, ...]:
         return self.surfaces + self.openables
 
     def type_of(self, name: str) -> str:
-        return "surface" if name in self.surfaces else "openable" if name in self.openables else "box"
+        kind = "surface" if name in self.surfaces else "openable" if name in self.openables else "box"
+        return self.words.types[kind]
 
 
 @dataclass(frozen=True)
@@ -73,21 +118,20 @@ class RandomProblem:
 
 
 def kitchen_objects(domain: Path, kitchen_map: KitchenMap | None = None) -> KitchenObjects:
-    """The map's objects, checked against the domain's types and predicates."""
-    model = domain_model(domain)
-    for type_name in KITCHEN_TYPES:
-        if model.type_names.get(type_name) is None:
-            raise RandomProblemError(f"{domain}: the domain has no type {type_name!r} for the kitchen")
-    for predicate, arity in PREDICATE_ARITIES.items():
-        if model.predicates.get(predicate) != arity:
-            raise RandomProblemError(
-                f"{domain}: random problems need the predicate ({predicate}) with {arity} arguments"
-            )
-    kitchen_map = kitchen_map if kitchen_map is not None else default_kitchen_map()
+    """The map's objects (the default kitchen's, bound to ``domain``, if None) and the words of
+    the domain's binding."""
+    if kitchen_map is None:
+        try:
+            kitchen_map = load_kitchen_map(default_scene_path(), domain)
+        except KitchenError as error:
+            raise RandomProblemError(str(error)) from None
+    words = Vocabulary.of(kitchen_map.binding, domain)
     objects = KitchenObjects(
         surfaces=tuple(sorted(kitchen_map.surfaces)),
         openables=tuple(sorted(kitchen_map.openables)),
         boxes=tuple(sorted(kitchen_map.boxes)),
+        words=words,
+        kitchen_map=kitchen_map,
     )
     if not objects.boxes or len(objects.places) < 2:
         raise RandomProblemError("random problems need a box and two places for it in the kitchen map")
@@ -95,7 +139,8 @@ def kitchen_objects(domain: Path, kitchen_map: KitchenMap | None = None) -> Kitc
 
 
 def _location_atom(box: str, place: str, objects: KitchenObjects) -> Atom:
-    return (ON if place in objects.surfaces else IN, box, place)
+    words = objects.words
+    return (words.on_surface if place in objects.surfaces else words.in_drawer, box, place)
 
 
 def _draw_start(rng: np.random.Generator, objects: KitchenObjects) -> tuple[dict[str, str], frozenset[Atom]]:
@@ -108,12 +153,17 @@ def _draw_start(rng: np.random.Generator, objects: KitchenObjects) -> tuple[dict
     boxes = [str(b) for b in rng.choice(objects.boxes, size=count, replace=False)]
     places = [str(p) for p in rng.choice(objects.places, size=count, replace=False)]
     where = dict(zip(sorted(boxes), places, strict=True))
-    init: set[Atom] = {(ARM_CLEAR,)}
+    words = objects.words
+    init: set[Atom] = {(words.hand_empty,)}
     init.update(_location_atom(box, place, objects) for box, place in where.items())
     occupied = set(where.values())
-    init.update((SURFACE_CLEAR, s) for s in objects.surfaces if s not in occupied)
-    init.update((OPENABLE_CLEAR, o) for o in objects.openables if o not in occupied)
-    init.update((OPENED, o) for o in objects.openables if rng.random() < 0.5)
+    if words.surface_clear is not None:
+        init.update((words.surface_clear, s) for s in objects.surfaces if s not in occupied)
+    if words.drawer_clear is not None:
+        init.update((words.drawer_clear, o) for o in objects.openables if o not in occupied)
+    if words.box_clear is not None:
+        init.update((words.box_clear, box) for box in where)
+    init.update((words.opened, o) for o in objects.openables if rng.random() < 0.5)
     return where, frozenset(init)
 
 
@@ -131,7 +181,7 @@ def _draw_goal(rng: np.random.Generator, where: dict[str, str], objects: Kitchen
 def _lays_out(objects: KitchenObjects, boxes: Sequence[str], init: frozenset[Atom]) -> bool:
     typed = {name: objects.type_of(name) for name in (*objects.places, *boxes)}
     try:
-        with build_kitchen(typed, init):
+        with build_kitchen(typed, init, kitchen_map=objects.kitchen_map):
             return True
     except KitchenError:
         return False
@@ -142,7 +192,9 @@ def problem_text(
     goal: frozenset[Atom], comment: str,
 ) -> str:
     """The PDDL text of a problem over all places of the kitchen and the given boxes."""
-    groups = [(objects.surfaces, "surface"), (objects.openables, "openable"), (tuple(sorted(boxes)), "box")]
+    types = objects.words.types
+    groups = [(objects.surfaces, types["surface"]), (objects.openables, types["openable"]),
+              (tuple(sorted(boxes)), types["box"])]
     declared = "\n".join(f"    {' '.join(names)} - {type_name}" for names, type_name in groups if names)
     facts = "\n".join(f"    {atom_text(a)}" for a in sorted(init))
     wanted = "\n".join(f"    {atom_text(a)}" for a in sorted(goal))

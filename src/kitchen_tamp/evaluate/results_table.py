@@ -26,7 +26,7 @@ PHASES = (
 COLUMNS = (
     "task_id", "problem", "mode", "seed", "status", "exit_code", "solved", "verified", "collision_free",
     "physics_verified", "failure_stage", "failure_reason", "plan_length", "abstract_plans_tried",
-    "samples", "backtracks", "path_length_rad", "min_clearance_m", "wall_s", *PHASES,
+    "samples", "backtracks", "facts_learned", "path_length_rad", "min_clearance_m", "wall_s", *PHASES,
     "problem_path", "run_dir",
 )
 STATUSES = ("solved", "failed", "timeout", "crashed", "bad_input")
@@ -104,6 +104,7 @@ def row_of(result: TaskResult) -> dict[str, str]:
         "abstract_plans_tried": str(bilevel.get("abstract_plans_tried", "")),
         "samples": str(bilevel.get("samples", "")),
         "backtracks": str(bilevel.get("backtracks", "")),
+        "facts_learned": str(len(bilevel.get("learned") or [])) if bilevel else "",
         "path_length_rad": _path_length(report),
         "min_clearance_m": str(verification.get("min_clearance_m", "")),
         "wall_s": f"{result.wall_s:.3f}",

@@ -49,6 +49,10 @@ class GroupFigures:
     p90_time_s: float | None
     median_path_rad: float | None
     median_samples: float | None
+    median_plans: float | None
+    """Abstract plans tried, over every run that planned (solved or not)."""
+    median_facts: float | None
+    """Facts learned from failures, over every run that planned."""
     causes: Counter[str]
     physics_checked: int
     physics_verified: int
@@ -77,6 +81,8 @@ def group_figures(rows: Sequence[dict[str, str]]) -> GroupFigures:
         p90_time_s=quantile(times, 0.9),
         median_path_rad=quantile(_numbers(solved, "path_length_rad"), 0.5),
         median_samples=quantile(samples, 0.5),
+        median_plans=quantile(_numbers(rows, "abstract_plans_tried"), 0.5),
+        median_facts=quantile(_numbers(rows, "facts_learned"), 0.5),
         causes=Counter(failure_cause(row) for row in rows if row["status"] != "solved"),
         physics_checked=len(physics),
         physics_verified=sum(value == "true" for value in physics),

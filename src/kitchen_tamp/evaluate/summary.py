@@ -49,17 +49,22 @@ def _table_row(problem: str, mode: str, figures: GroupFigures) -> str:
     causes = ", ".join(f"{cause} {count}" for cause, count in figures.causes.most_common()) or "-"
     path = "-" if figures.median_path_rad is None else f"{figures.median_path_rad:.1f}"
     physics = "-" if not figures.physics_checked else f"{figures.physics_verified}/{figures.physics_checked}"
+    plans, facts = (_count(value) for value in (figures.median_plans, figures.median_facts))
     return (f"| {problem} | {mode} | {figures.solved}/{figures.runs} | {100 * figures.rate:.0f}% "
             f"[{100 * low:.0f}, {100 * high:.0f}] | {_seconds(figures.median_time_s)} | "
-            f"{_seconds(figures.p90_time_s)} | {path} | {physics} | {causes} |")
+            f"{_seconds(figures.p90_time_s)} | {plans} | {facts} | {path} | {physics} | {causes} |")
+
+
+def _count(value: float | None) -> str:
+    return "-" if value is None else f"{value:g}"
 
 
 def success_table(groups: dict[tuple[str, str], Rows], random_names: set[str]) -> list[str]:
     """The markdown table of every group except single random problems."""
     lines = [
-        "| problem | mode | solved | success [95% CI] | median s | p90 s | median path rad | physics ok | "
-        "failures |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| problem | mode | solved | success [95% CI] | median s | p90 s | plans | facts learned | "
+        "median path rad | physics ok | failures |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for (problem, mode), rows in groups.items():
         if problem not in random_names:
@@ -112,9 +117,10 @@ def summary_text(out_dir: Path, rows: Sequence[dict[str, str]], manifest: Rows) 
         "",
         f"{len(rows)} tasks from `{RESULTS_FILE}`. A task is solved when `final_project.py` exits 0 with a "
         "verified report. Success is over all tasks of a group with a 95% Wilson interval; times are "
-        "wall seconds of the solved tasks (process start to exit), path lengths their joint-space "
-        "length summed over the actions; failures are counted by cause (timeout, crashed, or the stage "
-        "that failed).",
+        "wall seconds of the solved tasks (process start to exit); plans (abstract plans tried) and "
+        "facts learned (from failures, fed back to the abstract search) are medians over the tasks "
+        "that planned; path lengths are the solved tasks' joint-space length summed over the "
+        "actions; failures are counted by cause (timeout, crashed, or the stage that failed).",
         "",
         *success_table(groups, random_names),
         "",

@@ -16,7 +16,11 @@ collision-free at states at most ``resolution`` rad apart, with every pair of
 the cabinet while it moves); a box let go of stands on something; a hand holding
 a handle keeps to the drawer's slide and its travel; fingers never close on
 nothing the action names; after every action the scene's abstraction Ψ is the
-state the symbolic plan predicts; at the end Ψ entails the goal.
+state the symbolic plan predicts; at the end Ψ entails the goal. Conditions
+geometry does not show (``clean``, ``cooked``) are derived as the planner derives
+them (``kitchen.record_conditions``): an action's condition effects hold when its
+skill's requirement holds in the replayed scene (a ``process`` action's box rests
+on its place).
 
 What the judge derived is kept for the physics judge and for pictures: per step
 the replayed tracks (per state what the hand holds, every drawer's opening) and
@@ -38,6 +42,7 @@ from kitchen_tamp.kitchen import (
     KitchenScene,
     SegmentTrack,
     abstract_state,
+    record_conditions,
     replay_action,
 )
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
@@ -170,6 +175,9 @@ def verify_trajectory(
         if replay.min_clearance_m < result.min_clearance_m:
             result.min_clearance_m = replay.min_clearance_m
             result.closest_approach = replay.closest_approach
+        condition_problem = None if action is None else record_conditions(kitchen, task, action)
+        if condition_problem is not None:
+            result.problems.append(f"{label}: {condition_problem}")
         observed = abstract_state(kitchen, task.objects)
         expected = task.state_atoms(state)
         mismatch = state_mismatch(observed, expected)

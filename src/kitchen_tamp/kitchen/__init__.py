@@ -14,7 +14,7 @@ from kitchen_tamp.kitchen.abstraction import RESTING_GAP, abstract_state, check_
 from kitchen_tamp.kitchen.action_replay import ActionReplay, first_problem, replay_action
 from kitchen_tamp.kitchen.binding import ActionBinding, DomainBinding
 from kitchen_tamp.kitchen.binding_reader import read_binding
-from kitchen_tamp.kitchen.conditions import apply_condition_effects
+from kitchen_tamp.kitchen.conditions import apply_condition_effects, record_conditions
 from kitchen_tamp.kitchen.contact_policy import CONTACT_PENETRATION_BOUND, check_initial_overlaps
 from kitchen_tamp.kitchen.errors import (
     BindingFileError,
@@ -77,6 +77,7 @@ __all__ = [
     "load_kitchen_map",
     "load_kitchen_problem",
     "read_binding",
+    "record_conditions",
     "replay_action",
     "sample_action_targets",
     "sample_targets",

@@ -8,7 +8,10 @@ the snapshot, draws one target sample and solves the move (``refine_action`` wit
 one sample), records the conditions the action's effects set, and returns the
 snapshot after the action; Ψ is ``abstract_state`` of the restored scene. A skill
 that failed raises ``SkillSamplingFailure``, which carries the ``SkillFailure`` (its
-kind, the objects that obstructed it, the region) for the abstract level.
+kind, the objects that obstructed it, the region) and, with failure feedback on, the
+facts it teaches the abstract search once confirmed (``failure_feedback``): SeSamE's
+plan generator learns them, and the next abstract plans move what is in the way first
+and leave out what is out of reach.
 """
 
 from __future__ import annotations
@@ -26,12 +29,14 @@ from kitchen_tamp.bilevel import (
     SamplingFailure,
     SesameBudgets,
     Trajectory,
+    fact_text,
     relational_problem,
     sesame,
 )
-from kitchen_tamp.kitchen import KitchenScene, SkillFailure, abstract_state, apply_condition_effects
+from kitchen_tamp.kitchen import KitchenScene, SkillFailure, abstract_state, record_conditions
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, State, Task
+from kitchen_tamp.refinement.failure_feedback import FailureFeedback
 from kitchen_tamp.refinement.motion_backend import MotionBackend
 from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL
 from kitchen_tamp.refinement.refine_action import ActionSampleRecord, RefinedKitchenPlan, refine_action
@@ -61,8 +66,10 @@ class SkillSamplingFailure(SamplingFailure):
     """A sample failed; ``skill_failure`` is the skill's own failure (kind, obstructing objects,
     region) when the skill found no targets, None when the motion or the judge's replay failed."""
 
-    def __init__(self, message: str, skill_failure: SkillFailure | None) -> None:
-        super().__init__(message)
+    def __init__(
+        self, message: str, skill_failure: SkillFailure | None, feedback: tuple[object, ...] = ()
+    ) -> None:
+        super().__init__(message, feedback)
         self.skill_failure = skill_failure
 
 
@@ -80,6 +87,8 @@ class KitchenSampler:
     task: Task
     backend: MotionBackend
     collision_model: str = DEFAULT_COLLISION_MODEL
+    feedback: FailureFeedback | None = None
+    """Turns skill failures into facts for the abstract search; None: failures teach nothing."""
     records: dict[int, ActionSampleRecord] = field(default_factory=dict)
     """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
     last_record: ActionSampleRecord | None = None
@@ -103,13 +112,14 @@ class KitchenSampler:
         self.last_record = record
         if trajectory is None:
             message = record.rejections[-1] if record.rejections else f"{action.text} failed"
-            raise SkillSamplingFailure(message, record.skill_failure)
-        atoms = self.task.atoms
-        apply_condition_effects(
-            self.kitchen,
-            (atoms[i] for i in action.add_ids),
-            (atoms[i] for i in range(len(atoms)) if action.delete >> i & 1),
-        )
+            facts: tuple[object, ...] = ()
+            if self.feedback is not None and record.skill_failure is not None:
+                state.restore(self.kitchen)
+                facts = self.feedback.facts(action, transition.source, record.skill_failure)
+            raise SkillSamplingFailure(message, record.skill_failure, facts)
+        problem = record_conditions(self.kitchen, self.task, action)
+        if problem is not None:
+            raise SkillSamplingFailure(problem, None)
         self.records[id(trajectory)] = record
         return Trajectory((state, KitchenState.of(self.kitchen)), (trajectory,))
 
@@ -122,8 +132,10 @@ class SesameRefinement:
     result: BilevelResult[KitchenState, ActionTrajectory, State, GroundAction]
 
     def report_data(self) -> dict[str, object]:
-        """The ``bilevel`` section of a report: plans tried, samples, failures, backtracks."""
+        """The ``bilevel`` section of a report: plans tried, samples, failures, backtracks, and
+        (when failures taught the abstract search anything) the facts learned."""
         result = self.result
+        learned = {"learned": [fact_text(fact) for fact in result.learned]} if result.learned else {}
         return {
             "planner": result.planner,
             "outcome": str(result.outcome),
@@ -149,7 +161,22 @@ class SesameRefinement:
                 }
                 for attempt in result.attempts
             ],
+            **learned,
         }
+
+
+@dataclass(frozen=True)
+class RefinementOptions:
+    """How the kitchen's samples are drawn and what their failures teach."""
+
+    collision_model: str = DEFAULT_COLLISION_MODEL
+    """The collision model planning checks moves with (PyBullet always verifies)."""
+    feedback: bool = True
+    """Confirmed skill failures teach the abstract search (obstructions, places out of reach);
+    off, only the refinement of each plan reacts to them (resampling, backtracking)."""
+
+
+DEFAULT_OPTIONS: Final = RefinementOptions()
 
 
 def refine_with_sesame(
@@ -158,11 +185,12 @@ def refine_with_sesame(
     backend: MotionBackend,
     seed: int,
     budgets: SesameBudgets = KITCHEN_BUDGETS,
-    collision_model: str = DEFAULT_COLLISION_MODEL,
+    options: RefinementOptions = DEFAULT_OPTIONS,
     on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
 ) -> SesameRefinement:
     """Run SeSamE from the scene as it is; on success the scene is left in the final state."""
-    sampler = KitchenSampler(kitchen, task, backend, collision_model)
+    teacher = FailureFeedback(kitchen, task, np.random.default_rng(seed)) if options.feedback else None
+    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher)
     initial = KitchenState.of(kitchen)
     problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
 
@@ -196,7 +224,8 @@ def sesame_replanner(
     to the task's goal (its initial state being the scene's), or None if it finds no plan."""
 
     def replan(kitchen: KitchenScene, task: Task) -> KitchenTrajectory | None:
-        refined = refine_with_sesame(kitchen, task, backend, seed, budgets, collision_model).refined
+        options = RefinementOptions(collision_model)
+        refined = refine_with_sesame(kitchen, task, backend, seed, budgets, options).refined
         return None if refined is None else refined.trajectory
 
     return replan

@@ -10,9 +10,12 @@ behind its command is bounded and every unplanned contact of the robot is a
 problem. After each action the scene settles; then Ψ(scene) must be the planned
 state, and every box and drawer must lie within the tolerances of where the
 kinematic judge left it (position and tilt: Ψ alone would call a box leaning 30
-degrees "on" the surface it leans on). Only the file's decisions are used: the
-actions' text and the segments' configurations and gripper widths, read once by
-the kinematic judge (``Verification.tracks`` and ``outcomes``) for both judges.
+degrees "on" the surface it leans on), and every stack the plan has standing must
+stand (its top box on its base). Conditions (``clean``, ``cooked``) are derived in
+the simulated scene as the planner derives them (``kitchen.record_conditions``).
+Only the file's decisions are used: the actions' text and the segments'
+configurations and gripper widths, read once by the kinematic judge
+(``Verification.tracks`` and ``outcomes``) for both judges.
 
 Physics judges what is in the file: it never plans. Given a ``Replanner`` (a
 planning run), a scene that drifted beyond tolerance after an action stops the
@@ -36,9 +39,10 @@ from kitchen_tamp.execute.physics.verdict import (
 )
 from kitchen_tamp.execute.run_report import RunReport
 from kitchen_tamp.execute.verification import Verification, parse_action
-from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
+from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_task, record_conditions
+from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
-from kitchen_tamp.planning import Task
+from kitchen_tamp.planning import Atom, Task
 from kitchen_tamp.world.physics import PhysicsWorld
 
 
@@ -76,7 +80,11 @@ def execute_under_physics(
                 state = action.apply(state)
             world.command_arm(step.end)
             rollout.settle()
-            drift = rollout.compare(figures, outcome, task.state_atoms(state))
+            label, planned = f"after {step.action}", task.state_atoms(state)
+            condition_problem = None if action is None else record_conditions(kitchen, task, action)
+            result.problems.extend([f"{label}: {condition_problem}"] if condition_problem else [])
+            result.problems.extend(f"{label}: {fallen}" for fallen in fallen_stacks(kitchen, planned))
+            drift = rollout.compare(figures, outcome, planned)
             result.actions.append(figures)
             result.problems.extend(drift)
             steady = figures.as_planned and figures.held_box is None and index + 1 < len(steps)
@@ -92,6 +100,21 @@ def execute_under_physics(
             result.final_box_errors = result.actions[-1].box_errors
         result.simulated_s = world.time
     return result
+
+
+def fallen_stacks(kitchen: KitchenScene, expected: frozenset[Atom]) -> list[str]:
+    """The stacks the plan has standing (atoms of a predicate meaning ``on_box``, per the
+    binding) whose top box no longer rests on its base in the simulated scene."""
+    on_box = set(kitchen.map.binding.predicates_for("on_box"))
+    fallen = []
+    for atom in sorted(expected):
+        if atom[0] in on_box and len(atom) == 3 and atom[2] in kitchen.boxes:
+            top, base = atom[1], atom[2]
+            resting = [name for _, name in supports_of(kitchen, top)]
+            if base not in resting:
+                fallen.append(f"the stack of {top} on {base} fell ({top} rests on "
+                              f"{' and '.join(resting) or 'nothing'})")
+    return fallen
 
 
 def judge_under_physics(

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.binding import ActionBinding
+from kitchen_tamp.kitchen.conditions import process_problem
 from kitchen_tamp.kitchen.errors import FailureKind, SkillFailure
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment
@@ -30,16 +30,9 @@ def sample_process(
     text = action_text(action)
     box, place = binding.argument("object", action[1]), binding.argument("place", action[1])
     assert box is not None and place is not None  # required roles
-    if kitchen.held_box() == box:
-        raise SkillFailure(
-            text, f"the hand holds {box}: it must rest on {place}", FailureKind.PRECONDITION, (box,)
-        )
-    resting = [name for _, name in supports_of(kitchen, box)]
-    if place not in resting:
-        where = " and ".join(resting) or "nothing"
-        raise SkillFailure(
-            text, f"{box} rests on {where}, not on {place}", FailureKind.PRECONDITION, (box,), place
-        )
+    problem = process_problem(kitchen, box, place)
+    if problem is not None:
+        raise SkillFailure(text, problem, FailureKind.PRECONDITION, (box,), place)
     q = kitchen.arm_configuration()
     width = kitchen.robot.gripper_width()
     still, widths = hold_still(q, (width, width))

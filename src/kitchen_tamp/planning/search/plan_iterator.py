@@ -7,9 +7,9 @@ overestimates the steps still needed; so goal paths come out in non-decreasing
 length. A path never revisits one of its own states, so every plan is acyclic
 and the enumeration ends on finite state spaces. Equal lengths are ordered by
 an optional seeded random source, else by generation order. It works over any
-state and action types: ``iter_plans`` runs it on a grounded ``Task`` with h_max,
-and the bilevel package's abstract plan generator on abstract states with exact
-goal distances.
+state and action types: ``iter_plans`` runs it on a grounded ``Task`` with h_max
+(shortest first) or h_FF (best first, for large tasks), and the bilevel package's
+abstract plan generator on abstract states with exact goal distances.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import math
 from collections.abc import Callable, Iterable, Iterator
 from typing import Generic, Protocol, TypeVar
 
-from kitchen_tamp.planning.heuristics import make_heuristic
+from kitchen_tamp.planning.heuristics import HeuristicName, make_heuristic
 from kitchen_tamp.planning.task import GroundAction, Task
 
 S = TypeVar("S")
@@ -72,13 +72,16 @@ def shortest_plans_first(
     *,
     rng: RandomSource | None = None,
     max_length: int | None = None,
+    max_expansions: int | None = None,
 ) -> Iterator[tuple[tuple[S, ...], tuple[A, ...]]]:
     """Every acyclic plan from ``initial`` as (states, actions), shortest first (lazily).
 
     ``remaining(state)``: a lower bound on the steps from ``state`` to a goal,
     ``math.inf`` where none is reachable (those states are never queued). Each
     queued node draws one ``rng.random()`` for its tie-break, the root first,
-    so a seeded source gives the same order every run.
+    so a seeded source gives the same order every run. ``max_expansions`` ends the
+    enumeration after that many nodes expanded (over all plans), so a task whose
+    plans lie beyond reach (or that has none) does not hold the caller for ever.
     """
 
     def tie() -> float:
@@ -89,6 +92,7 @@ def shortest_plans_first(
     order = itertools.count()
     heap: list[tuple[float, float, int, PathNode[S, A]]] = [
         (remaining(initial), tie(), next(order), PathNode(initial, None, None))]
+    expansions = 0
     while heap:
         _, _, _, node = heapq.heappop(heap)
         if is_goal(node.state):
@@ -96,6 +100,9 @@ def shortest_plans_first(
             continue  # a plan that passes through a goal state is not a new shortest plan
         if max_length is not None and node.length >= max_length:
             continue
+        expansions += 1
+        if max_expansions is not None and expansions > max_expansions:
+            return
         for action, child in successors(node.state):
             to_go = remaining(child)
             if to_go == math.inf or node.visits(child):
@@ -107,13 +114,24 @@ def shortest_plans_first(
 
 
 def iter_plans(
-    task: Task, *, rng: RandomSource | None = None, max_length: int | None = None
+    task: Task,
+    *,
+    rng: RandomSource | None = None,
+    max_length: int | None = None,
+    heuristic: HeuristicName = "hmax",
+    max_expansions: int | None = None,
 ) -> Iterator[tuple[GroundAction, ...]]:
-    """Yield every acyclic plan of ``task``, shortest first (lazily: take what you need).
+    """Yield every acyclic plan of ``task`` (lazily: take what you need).
 
-    Ordered by length + h_max; equal lengths by ``rng`` if given, else by generation order.
+    Ordered by length + ``heuristic``; equal values by ``rng`` if given, else by
+    generation order. With h_max (the default) the bound is admissible and plans come
+    shortest first. With an informative heuristic that may overestimate (h_FF) they come
+    best first instead, as in A* with that heuristic: on a large task the first plan
+    comes after a few expansions where h_max's bound leaves the search breadth-first;
+    a later plan may be shorter than an earlier one, and ``max_length`` bounds the
+    estimate rather than the plans' length. ``max_expansions``: see ``shortest_plans_first``.
     """
     for _, actions in shortest_plans_first(
-            task.initial_state, task.successors, task.is_goal, make_heuristic(task, "hmax"),
-            rng=rng, max_length=max_length):
+            task.initial_state, task.successors, task.is_goal, make_heuristic(task, heuristic),
+            rng=rng, max_length=max_length, max_expansions=max_expansions):
         yield actions

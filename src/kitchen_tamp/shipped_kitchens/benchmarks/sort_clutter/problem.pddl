@@ -4,7 +4,7 @@
   (:domain kitchen-regions)
   (:objects
     table blue_region red_region - region
-    blue1 red1 blue2 red2 blue3 clutter1 clutter2 clutter3 clutter4 clutter5 clutter6 clutter7 clutter8 - item)
+    blue1 red1 blue2 red2 blue3 clutter1 clutter2 clutter3 clutter4 - item)
   (:init
     (on blue1 table)
     (on red1 table)
@@ -15,10 +15,6 @@
     (on clutter2 table)
     (on clutter3 table)
     (on clutter4 table)
-    (on clutter5 table)
-    (on clutter6 table)
-    (on clutter7 table)
-    (on clutter8 table)
     (clear blue1)
     (clear red1)
     (clear blue2)
@@ -28,10 +24,6 @@
     (clear clutter2)
     (clear clutter3)
     (clear clutter4)
-    (clear clutter5)
-    (clear clutter6)
-    (clear clutter7)
-    (clear clutter8)
     (handempty))
   (:goal (and
     (on blue1 blue_region)
