@@ -24,12 +24,15 @@ browser:
 demo: install
 	$(BIN)/python final_project.py rrt
 
+# Both suites run on every core (pytest-xdist), a test file to a worker.
+PYTEST := $(BIN)/python -m pytest -q -n auto --dist loadfile
+
 test: install
-	$(BIN)/python -m pytest -q
+	$(PYTEST)
 
 # The quick loop: everything but whole pipelines and long agreement checks (marked slow).
 test-fast: install
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(PYTEST) -m "not slow"
 
 lint: install
 	$(BIN)/ruff check .
