@@ -46,13 +46,12 @@ def _compile_kernels() -> None:
 
 
 def _compile_planning_kernels(task: Task) -> None:
-    from kitchen_tamp.planning.compiled_exploration import CompiledExploration
     from kitchen_tamp.planning.heuristics import RelaxedExploration
+    from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 
-    compiled = CompiledExploration(RelaxedExploration(task, "hadd"))
-    state_array = compiled.explore(task.initial_state)
-    if state_array is not None:
-        compiled.plan_and_helpful(state_array)
+    evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
+    evaluator.compiled_after_work = -1  # through the kernels from the first state
+    evaluator.root()
 
 
 def main() -> int:

@@ -12,6 +12,7 @@ has done enough work in Python (``COMPILED_AFTER_WORK``).
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,9 +23,13 @@ from kitchen_tamp.planning.relaxed_kernel import (
     IntArray,
     additive_exploration,
     applicable_achievers,
+    landmark_count,
     supported_plan,
 )
 from kitchen_tamp.planning.task import State, bits
+
+if TYPE_CHECKING:
+    from kitchen_tamp.planning.landmark_count import LandmarkCount
 
 
 def _flat(rows: Iterable[Iterable[int]]) -> tuple[IntArray, IntArray]:
@@ -37,9 +42,14 @@ def _flat(rows: Iterable[Iterable[int]]) -> tuple[IntArray, IntArray]:
     return np.array(starts, dtype=np.int64), np.array(values, dtype=np.int64)
 
 
-def _atoms(mask: int) -> IntArray:
-    """The set bits of ``mask`` as an array, lowest first."""
-    return np.array(list(bits(mask)), dtype=np.int64)
+def _bytes_of(mask: int, size: int) -> ByteArray:
+    return np.frombuffer(mask.to_bytes(size, "little"), dtype=np.uint8)
+
+
+def _rows(masks: Iterable[int], size: int) -> ByteArray:
+    """Bitsets as the rows of a byte matrix (``size`` bytes each)."""
+    return np.array([np.frombuffer(mask.to_bytes(size, "little"), dtype=np.uint8) for mask in masks],
+                    dtype=np.uint8).reshape(-1, size)
 
 
 def _bitset(indices: IntArray) -> int:
@@ -84,7 +94,7 @@ class CompiledExploration:
         self.found = np.empty(len(self.achievers) + 1, dtype=np.int64)
 
     def _state_array(self, state: State) -> ByteArray:
-        return np.frombuffer(state.to_bytes(self.state_bytes, "little"), dtype=np.uint8)
+        return _bytes_of(state, self.state_bytes)
 
     def explore(self, state: State) -> ByteArray | None:
         """Run h_add's exploration from ``state`` (costs in ``self.cost``): the state's bytes, None at a
@@ -105,18 +115,17 @@ class CompiledExploration:
             self.marked_atoms, self.stack)
         return length, _bitset(self.helpful[:applicable])
 
-    def achieving(self, state_array: ByteArray, targets: int) -> int:
+    def achieving(self, state_array: ByteArray, targets: IntArray) -> int:
         """The actions achieving one of the atoms ``targets`` that are applicable in the state, as a bitset
         (``LandmarkCount.achieving_actions`` with this object's ``achievers``)."""
         count = applicable_achievers(
-            state_array, _atoms(targets), self.achievers_start, self.achievers, self.pre_start, self.pres,
+            state_array, targets, self.achievers_start, self.achievers, self.pre_start, self.pres,
             self.neg_start, self.negs, self.found)
         return _bitset(self.found[:count])
 
-    def helpful_towards_nearest(self, state_array: ByteArray, targets: int) -> int:
-        """The applicable actions of the relaxed plan to the cheapest of the atoms ``targets`` in the last
-        exploration (``LandmarkEvaluator._towards_nearest``), as a bitset; 0 if none is reached."""
-        atoms = _atoms(targets)
+    def helpful_towards_nearest(self, state_array: ByteArray, atoms: IntArray) -> int:
+        """The applicable actions of the relaxed plan to the cheapest of the atoms ``atoms`` (ascending) in
+        the last exploration (``LandmarkEvaluator._towards_nearest``), as a bitset; 0 if none is reached."""
         target_costs = self.cost[atoms]
         nearest = target_costs.min(initial=UNREACHED)
         if nearest == UNREACHED:
@@ -130,3 +139,25 @@ class CompiledExploration:
     def supporters(self) -> list[int]:
         """The last exploration's best supporters (-1: none)."""
         return self.supporter.tolist()
+
+
+class CompiledLandmarkCount:
+    """``LandmarkCount.value`` through the compiled kernel: the same h_LM and landmarks to reach next."""
+
+    def __init__(self, count: LandmarkCount, state_bytes: int) -> None:
+        self.state_bytes = state_bytes
+        atoms = list(bits(count.landmarks))
+        self.landmark_atoms = np.array(atoms, dtype=np.int64)
+        self.goal = _bytes_of(count.goal, state_bytes)
+        self.natural = _rows((count.natural[atom] for atom in atoms), state_bytes)
+        self.greedy_necessary = _rows((count.greedy_necessary[atom] for atom in atoms), state_bytes)
+        self.unaccepted = np.empty(state_bytes, dtype=np.uint8)
+        self.needed = np.empty(state_bytes, dtype=np.uint8)
+        self.targets = np.empty(len(atoms) + 1, dtype=np.int64)
+
+    def value(self, state_array: ByteArray, accepted: int) -> tuple[int, IntArray]:
+        """h_LM of the state and the landmarks to reach next, ascending (a view of work space)."""
+        h, count = landmark_count(
+            state_array, _bytes_of(accepted, self.state_bytes), self.landmark_atoms, self.goal, self.natural,
+            self.greedy_necessary, self.unaccepted, self.needed, self.targets)
+        return h, self.targets[:count]

@@ -32,7 +32,7 @@ from kitchen_tamp.planning.landmarks import landmark_graph
 from kitchen_tamp.planning.task import bits
 
 if TYPE_CHECKING:
-    from kitchen_tamp.planning.compiled_exploration import CompiledExploration
+    from kitchen_tamp.planning.compiled_exploration import CompiledExploration, CompiledLandmarkCount
     from kitchen_tamp.planning.heuristics import RelaxedExploration
     from kitchen_tamp.planning.landmarks import LandmarkGraph
     from kitchen_tamp.planning.task import State
@@ -116,6 +116,7 @@ class LandmarkEvaluator:
         self.pre_masks = exploration.pre_masks
         self.evaluations = self.dead_ends = 0
         self.compiled: CompiledExploration | None = None
+        self.compiled_count: CompiledLandmarkCount | None = None
         self.compiled_after_work = COMPILED_AFTER_WORK
         # What one evaluation costs in Python grows with the relevant actions' preconditions and effects.
         self.work_per_evaluation = sum(
@@ -138,12 +139,15 @@ class LandmarkEvaluator:
             return DEAD_END
         self.evaluations += 1
         if self.compiled is None and self.evaluations * self.work_per_evaluation > self.compiled_after_work:
-            from kitchen_tamp.planning.compiled_exploration import (
-                CompiledExploration,  # numba: large tasks only
+            from kitchen_tamp.planning.compiled_exploration import (  # numba: large tasks only
+                CompiledExploration,
+                CompiledLandmarkCount,
             )
 
             achievers = None if self.count is None else self.count.achievers
             self.compiled = CompiledExploration(exploration, achievers)
+            if self.count is not None:
+                self.compiled_count = CompiledLandmarkCount(self.count, self.compiled.state_bytes)
         if self.compiled is not None:
             return self._evaluate_compiled(self.compiled, state, accepted)
         if self.dead_ends * 4 > self.evaluations and exploration.atom_layers(state) is None:
@@ -179,9 +183,10 @@ class LandmarkEvaluator:
         length, preferred = compiled.plan_and_helpful(state_array)
         if self.count is None:
             return Evaluation(float(length), 0.0, preferred, 0)
-        h_landmarks, next_up = self.count.value(state, accepted)
+        assert self.compiled_count is not None
+        h_landmarks, next_up = self.compiled_count.value(state_array, accepted)
         achieving = compiled.achieving(state_array, next_up)
-        if not achieving and next_up:
+        if not achieving and len(next_up):
             achieving = compiled.helpful_towards_nearest(state_array, next_up)
         return Evaluation(float(length), float(h_landmarks), preferred | achieving, accepted)
 

@@ -212,3 +212,42 @@ def applicable_achievers(state_bytes: ByteArray, targets: IntArray, achievers_st
                 found[count] = action
                 count += 1
     return count
+
+
+@numba.njit(cache=True)
+def landmark_count(state_bytes: ByteArray, accepted_bytes: ByteArray, landmark_atoms: IntArray,
+                   goal_bytes: ByteArray, natural: ByteArray, greedy_necessary: ByteArray,
+                   unaccepted_bytes: ByteArray, needed_bytes: ByteArray,
+                   targets: IntArray) -> tuple[int, int]:
+    """``LandmarkCount.value``: h_LM, and the landmarks to reach next into ``targets`` (ascending); returns
+    h_LM and their count. Row ``k`` of ``natural`` and ``greedy_necessary`` holds the bytes of landmark
+    ``landmark_atoms[k]``'s natural predecessors and greedy-necessary predecessors; the accepted landmarks
+    are landmarks."""
+    unaccepted_bytes[:] = 0
+    needed_bytes[:] = goal_bytes
+    unaccepted = 0
+    for k in range(len(landmark_atoms)):
+        atom = landmark_atoms[k]
+        if not _holds(accepted_bytes, atom):
+            unaccepted_bytes[atom >> 3] |= np.uint8(1 << (atom & 7))
+            for index in range(len(needed_bytes)):
+                needed_bytes[index] |= greedy_necessary[k, index]
+            unaccepted += 1
+    h = unaccepted
+    count = 0
+    for k in range(len(landmark_atoms)):
+        atom = landmark_atoms[k]
+        if _holds(unaccepted_bytes, atom):
+            free = True
+            for index in range(len(unaccepted_bytes)):
+                if natural[k, index] & unaccepted_bytes[index]:
+                    free = False
+                    break
+            if free:
+                targets[count] = atom
+                count += 1
+        elif not _holds(state_bytes, atom) and _holds(needed_bytes, atom):
+            h += 1  # accepted, false now, and needed again
+            targets[count] = atom
+            count += 1
+    return h, count
