@@ -138,10 +138,13 @@ def test_the_evaluator_switches_to_the_kernels_only_after_enough_work() -> None:
     evaluator = LandmarkEvaluator(RelaxedExploration(small, "hadd"))
     evaluator.root()
     assert evaluator.compiled is None
+    assert evaluator.work_per_evaluation * 1000 < landmark_count_module.COMPILED_AFTER_WORK
     large = _load("depot", "task03.pddl")
     evaluator = LandmarkEvaluator(RelaxedExploration(large, "hadd"))
+    evaluator.compiled_after_work = 40 * evaluator.work_per_evaluation
     states = _walk_states(large, seed=3)
-    for state in states:
+    for evaluated, state in enumerate(states[:40], start=1):
         evaluator.child(state, 0)
-    switch = landmark_count_module.COMPILED_AFTER_WORK // evaluator.work_per_evaluation
-    assert (evaluator.compiled is not None) == (len(states) > switch)
+        assert evaluator.compiled is None, evaluated
+    evaluator.child(states[40], 0)
+    assert evaluator.compiled is not None and evaluator.compiled_count is not None
