@@ -1,4 +1,4 @@
-"""``python -m kitchen_tamp.cli.prepare``: compile the sphere model's kernels at install time.
+"""``python -m kitchen_tamp.cli.prepare``: compile the sphere model's and the planner's kernels at install.
 
 The validity and clearance kernels are compiled by numba the first time they are
 called (about half a minute of one core) and cached on disk beside their sources
@@ -8,7 +8,9 @@ first run spends its time planning rather than compiling; an installed wheel can
 run it too (``kitchen-tamp-prepare``). It calls each kernel once, with the argument
 types a run gives it, on the default kitchen built in a throw-away cache folder,
 so nothing lands in the user's cache (no models, no spheres): their first run
-still starts from an empty cache.
+still starts from an empty cache. The activity planner's relaxed exploration
+(``kitchen_tamp.planning.relaxed_kernel``) is compiled the same way, on the
+default kitchen's task.
 """
 
 from __future__ import annotations
@@ -19,6 +21,8 @@ import tempfile
 import time
 
 import numpy as np
+
+from kitchen_tamp.planning import Task
 
 
 def _compile_kernels() -> None:
@@ -38,12 +42,23 @@ def _compile_kernels() -> None:
     checker.is_valid(home)
     checker.is_valid_without_padding(home)
     SphereClearance(checker.model, 0.005, ends=home)(home)
+    _compile_planning_kernels(task)
+
+
+def _compile_planning_kernels(task: Task) -> None:
+    from kitchen_tamp.planning.heuristics import RelaxedExploration
+    from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+
+    evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
+    evaluator.compiled_after_work = -1  # through the kernels from the first state
+    evaluator.root()
 
 
 def main() -> int:
     clock = time.perf_counter()
     # numba decides where its cache goes when the kernels are imported: before the cache moves
-    import kitchen_tamp.motion.geometry.spheres  # noqa: F401
+    import kitchen_tamp.motion.geometry.spheres
+    import kitchen_tamp.planning.relaxed_kernel  # noqa: F401
 
     saved = os.environ.get("XDG_CACHE_HOME")
     with tempfile.TemporaryDirectory(prefix="kitchen_tamp-prepare-") as cache:
@@ -55,7 +70,7 @@ def main() -> int:
                 os.environ.pop("XDG_CACHE_HOME", None)
             else:
                 os.environ["XDG_CACHE_HOME"] = saved
-    print(f"compiled the sphere model's kernels in {time.perf_counter() - clock:.1f} s")
+    print(f"compiled the sphere model's and the planner's kernels in {time.perf_counter() - clock:.1f} s")
     return 0
 
 

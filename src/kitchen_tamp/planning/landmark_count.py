@@ -32,6 +32,7 @@ from kitchen_tamp.planning.landmarks import landmark_graph
 from kitchen_tamp.planning.task import bits
 
 if TYPE_CHECKING:
+    from kitchen_tamp.planning.compiled_exploration import CompiledExploration, CompiledLandmarkCount
     from kitchen_tamp.planning.heuristics import RelaxedExploration
     from kitchen_tamp.planning.landmarks import LandmarkGraph
     from kitchen_tamp.planning.task import State
@@ -99,6 +100,10 @@ class Evaluation(NamedTuple):
 
 DEAD_END = Evaluation(INFINITY, INFINITY, 0, 0)
 
+COMPILED_AFTER_WORK = 5_000_000
+"""Evaluations times ``work_per_evaluation`` after which ``LandmarkEvaluator`` evaluates through the compiled
+kernels (``compiled_exploration``): about the Python work that costs as much as loading numba and them."""
+
 
 class LandmarkEvaluator:
     """h_FF with helpful actions and the landmark count with its preferred operators, from one exploration."""
@@ -110,6 +115,13 @@ class LandmarkEvaluator:
         self.count = None if graph is None else LandmarkCount(exploration, graph)
         self.pre_masks = exploration.pre_masks
         self.evaluations = self.dead_ends = 0
+        self.compiled: CompiledExploration | None = None
+        self.compiled_count: CompiledLandmarkCount | None = None
+        self.compiled_after_work = COMPILED_AFTER_WORK
+        # What one evaluation costs in Python grows with the relevant actions' preconditions and effects.
+        self.work_per_evaluation = sum(
+            len(exploration.preconditions_of[index]) + len(exploration.adds_of[index])
+            for _, _, index in exploration.entries)
 
     def root(self) -> Evaluation:
         state = self.exploration.task.initial_state
@@ -126,6 +138,18 @@ class LandmarkEvaluator:
         if exploration.unsolvable:
             return DEAD_END
         self.evaluations += 1
+        if self.compiled is None and self.evaluations * self.work_per_evaluation > self.compiled_after_work:
+            from kitchen_tamp.planning.compiled_exploration import (  # numba: large tasks only
+                CompiledExploration,
+                CompiledLandmarkCount,
+            )
+
+            achievers = None if self.count is None else self.count.achievers
+            self.compiled = CompiledExploration(exploration, achievers)
+            if self.count is not None:
+                self.compiled_count = CompiledLandmarkCount(self.count, self.compiled.state_bytes)
+        if self.compiled is not None:
+            return self._evaluate_compiled(self.compiled, state, accepted)
         if self.dead_ends * 4 > self.evaluations and exploration.atom_layers(state) is None:
             # A quarter of the states so far were dead ends: the bitset reachability test that tells
             # them is several times cheaper than h_add's exploration, which would find the same.
@@ -149,6 +173,22 @@ class LandmarkEvaluator:
         if not achieving and next_up:
             achieving = self._towards_nearest(state, next_up, cost, supporter)
         return Evaluation(float(len(plan)), float(h_landmarks), preferred | achieving, accepted)
+
+    def _evaluate_compiled(self, compiled: CompiledExploration, state: State, accepted: int) -> Evaluation:
+        """``evaluate`` with the exploration and the relaxed plan compiled: the same values and operators."""
+        state_array = compiled.explore(state)
+        if state_array is None:
+            self.dead_ends += 1
+            return DEAD_END
+        length, preferred = compiled.plan_and_helpful(state_array)
+        if self.count is None:
+            return Evaluation(float(length), 0.0, preferred, 0)
+        assert self.compiled_count is not None
+        h_landmarks, next_up = self.compiled_count.value(state_array, accepted)
+        achieving = compiled.achieving(state_array, next_up)
+        if not achieving and len(next_up):
+            achieving = compiled.helpful_towards_nearest(state_array, next_up)
+        return Evaluation(float(length), float(h_landmarks), preferred | achieving, accepted)
 
     def _towards_nearest(self, state: State, targets: int, cost: list[float], supporter: list[int]) -> int:
         """The applicable actions of the relaxed plan to the cheapest of ``targets`` (h_add costs)."""

@@ -1,0 +1,169 @@
+"""Our ``gbfs`` against Fast Downward's lama-first on the IPC set: whole processes, CPU seconds, one table.
+
+    python benchmarks/symbolic_lama.py                 # every IPC problem, one run each
+    python benchmarks/symbolic_lama.py --rounds 3 --only depot-task03,sokoban-task23
+    python benchmarks/symbolic_lama.py --evaluations   # CPU ms per evaluation, Python / compiled kernels
+
+Each row runs ``pddl/activity_planning.py PROBLEM --domain DOMAIN --planner gbfs`` on new files (the task
+cache emptied first) and ``fast-downward.py --alias lama-first DOMAIN PROBLEM`` as fresh processes,
+alternating, and takes the median over ``--rounds`` of each one's CPU time (user + system of the process and
+its children, steadier than wall time on a shared machine). It prints the markdown table of
+docs/planner.md's "Against lama-first on the IPC set" and the verdict against the bar: no row more than 2x
+slower than lama-first, geometric mean at most 0.5x, every problem solved. ``benchmarks/symbolic.py
+--process-only --ipc`` times the same rows as wall time with pyperplan beside them.
+
+``--evaluations`` times instead, in this process, one ``LandmarkEvaluator`` evaluation (h_FF, helpful
+actions, h_LM and its preferred operators) in Python and through the compiled kernels, in CPU milliseconds
+on the 200 states of seeded random walks, beside each row's ``work_per_evaluation``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from pddl_generators import IPC_DIR
+from symbolic import IPC_PROBLEMS
+from symbolic_process import _command, _run_once, fast_downward_script, geometric_mean
+
+from kitchen_tamp.planning import load_task
+from kitchen_tamp.planning.heuristics import RelaxedExploration
+from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+from kitchen_tamp.planning.task import State, Task
+
+WORST_RATIO = 2.0
+"""The bar: no row slower than this times lama-first's."""
+
+MEAN_RATIO = 0.5
+"""The bar: ours / lama-first at most this in geometric mean."""
+
+
+def _measure(command: list[str], planner: str, workdir: Path, timeout: float,
+             rounds: int) -> tuple[float | None, int | None, int | None]:
+    """Median CPU seconds over ``rounds`` runs, plan length, expansions (None, None, None without a plan)."""
+    cpu: list[float] = []
+    length = expanded = None
+    for _ in range(rounds):
+        _, cpu_seconds, outcome = _run_once(command, planner, workdir, timeout + 5)
+        if cpu_seconds is None:
+            return None, None, None
+        cpu.append(cpu_seconds)
+        length, expanded = outcome.length, outcome.expanded
+        if cpu_seconds > 5.0:
+            break  # a slow row: one run is measurement enough
+    return statistics.median(cpu), length, expanded
+
+
+def _rows(only: set[str] | None) -> list[tuple[str, Path, Path]]:
+    """The IPC rows with a gbfs pairing: name, domain file, problem file."""
+    rows = []
+    for domain_name, file, searches in IPC_PROBLEMS:
+        row = f"{domain_name}-{file.split(':')[0].removesuffix('.pddl')}"
+        if "gbfs" in searches and (only is None or row in only):
+            problem_file, _, domain_file = file.partition(":")
+            folder = IPC_DIR / domain_name
+            rows.append((row, folder / (domain_file or "domain.pddl"), folder / problem_file))
+    return rows
+
+
+def _walk_states(task: Task, walks: int = 10, length: int = 20) -> list[State]:
+    chooser = random.Random(1)
+    states = []
+    for _ in range(walks):
+        state = task.initial_state
+        for _ in range(length):
+            children = [child for child, _ in task.successor_indices(state)]
+            if not children:
+                break
+            state = chooser.choice(children)
+            states.append(state)
+    return states
+
+
+def evaluation_costs(domain: Path, problem: Path) -> tuple[str, float]:
+    """The row's work per evaluation and CPU ms per evaluation in Python and through the kernels, and the
+    CPU seconds of the first compiled evaluation (in the first row: loading numba and the kernels; numpy
+    is loaded already)."""
+    task = load_task(problem, domain)
+    states = _walk_states(task)
+    milliseconds = []
+    first = 0.0
+    for after_work in (10**18, -1):
+        evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
+        evaluator.compiled_after_work = after_work
+        start = time.process_time()
+        evaluator.root()
+        first = time.process_time() - start
+        start = time.process_time()
+        for state in states:
+            evaluator.evaluate(state, 0)
+        milliseconds.append((time.process_time() - start) * 1000 / len(states))
+    return f"{evaluator.work_per_evaluation} | {milliseconds[0]:.3f} | {milliseconds[1]:.3f}", first
+
+
+def _cell(value: float | int | None) -> str:
+    return "-" if value is None else f"{value:.3f}" if isinstance(value, float) else str(value)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("--only", help="comma-separated row names (domain-task) to run")
+    parser.add_argument("--rounds", type=int, default=1, help="runs per planner and row (median)")
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
+    parser.add_argument("--evaluations", action="store_true",
+                        help="CPU ms per evaluation in Python and compiled, in-process, instead")
+    args = parser.parse_args()
+    only = set(args.only.split(",")) if args.only else None
+    if args.evaluations:
+        print("| problem | work per evaluation | Python ms | compiled ms |\n|---|---|---|---|")
+        loading = None
+        for row, domain, problem in _rows(only):
+            cells, first = evaluation_costs(domain, problem)
+            loading = first if loading is None else loading
+            print(f"| {row} | {cells} |", flush=True)
+        print(f"\nthe first compiled evaluation (loading numba and the kernels): {loading:.3f} s CPU")
+        return 0
+    fd_script = fast_downward_script()
+    if fd_script is None:
+        print("Fast Downward (up_fast_downward) is not installed")
+        return 1
+    print("| problem | ours gbfs s | lama-first s | ours / lama-first | expanded ours / lama-first "
+          "| length ours / lama-first |\n|---|---|---|---|---|---|")
+    ratios: list[tuple[str, float]] = []
+    unsolved: list[str] = []
+    with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
+        workdir = Path(folder)
+        for row, domain, problem in _rows(only):
+            runs = {planner: _measure(_command(planner, "gbfs", domain, problem, workdir, fd_script,
+                                               args.timeout), planner, workdir, args.timeout, args.rounds)
+                    for planner in ("first", "fd")}
+            (ours, our_length, our_expanded), (fd, fd_length, fd_expanded) = runs["first"], runs["fd"]
+            ratio = "-" if ours is None or fd is None else f"{ours / fd:.2f}"
+            if ours is None:
+                unsolved.append(row)
+                ratio = f"unsolved in {args.timeout:g} s"
+            elif fd is not None:
+                ratios.append((row, ours / fd))
+            print(f"| {row} | {_cell(ours)} | {_cell(fd)} | {ratio} "
+                  f"| {_cell(our_expanded)}/{_cell(fd_expanded)} "
+                  f"| {_cell(our_length)}/{_cell(fd_length)} |", flush=True)
+    if not ratios:
+        return 0
+    mean = geometric_mean([r for _, r in ratios])
+    over = [f"{row} {r:.1f}x" for row, r in sorted(ratios, key=lambda item: -item[1]) if r > WORST_RATIO]
+    met = mean <= MEAN_RATIO and not over and not unsolved
+    print(f"\nours / lama-first over {len(ratios)} rows: {mean:.2f}x in geometric mean (bar {MEAN_RATIO}x); "
+          f"over {WORST_RATIO:g}x: {', '.join(over) or 'none'}; unsolved: {', '.join(unsolved) or 'none'}; "
+          f"the bar is {'met' if met else 'not met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
