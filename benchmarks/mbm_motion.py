@@ -58,12 +58,13 @@ PLANNERS = ("ours", "OMPL, same checker", "OMPL, PyBullet checker")
 
 @dataclass(frozen=True, eq=False)
 class MbmCase:
-    """One problem with its models: the sphere model we plan with, Drake's exact model that
-    judges, and PyBullet's checker for OMPL as its users set it up."""
+    """One problem with its models: the sphere model we plan with (Drake confirming its rejections
+    near a start or goal it rejects, `EndConfirmedChecker`), Drake's exact model that judges, and
+    PyBullet's checker for OMPL as its users set it up."""
 
     problem: MbmProblem
     query: MotionQuery
-    spheres: CollisionChecker
+    planning: CollisionChecker
     exact: CollisionChecker
     pybullet: CollisionChecker
 
@@ -73,28 +74,29 @@ def mbm_case(problem: MbmProblem) -> Iterator[MbmCase]:
     """The problem's models (PyBullet's scene is closed afterwards)."""
     from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
     from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.screening import EndConfirmedChecker
     from kitchen_tamp.world import PANDA, Robot, Scene, make_collision_checker, panda_urdf_path
 
     described = mbm_scene(problem, panda_urdf_path(), problems_directory() / "urdf")
     space = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)
-    spheres = SphereCollisionChecker(described)
-    query = MotionQuery(problem.name, problem.start, problem.goals[0], space, spheres)
+    exact = DrakeCollisionChecker(described)
+    ends = [problem.start, problem.goals[0]]
+    planning = EndConfirmedChecker(SphereCollisionChecker(described), exact, ends, exact_is_bare=True)
+    query = MotionQuery(problem.name, problem.start, problem.goals[0], space, planning)
     with Scene() as scene:
         body = scene.load_urdf("panda", panda_urdf_path(), fixed_base=True)
         scene.load_urdf("obstacles", described.bodies[1].urdf_path, fixed_base=True)
         scene.set_joint_positions(body, MBM_FINGER_JOINTS, [MBM_FINGER_OPENING] * len(MBM_FINGER_JOINTS))
         robot = Robot(scene, body, PANDA)
         robot.lower, robot.upper = MBM_PANDA_LOWER.copy(), MBM_PANDA_UPPER.copy()
-        yield MbmCase(
-            problem, query, spheres, DrakeCollisionChecker(described), make_collision_checker(scene, robot)
-        )
+        yield MbmCase(problem, query, planning, exact, make_collision_checker(scene, robot))
 
 
 def run_case(case: MbmCase, seed: int, budget_s: float, turn: int) -> dict[str, Run]:
     """Each planner on the case, starting with planner ``turn`` (mod 3); each path judged."""
     planners: dict[str, Callable[[], Planned]] = {
-        PLANNERS[0]: lambda: plan_ours(case.query, case.spheres, seed, budget_s, cpu_budget=True),
-        PLANNERS[1]: lambda: plan_ompl(case.query, case.spheres, budget_s, cpu_budget=True),
+        PLANNERS[0]: lambda: plan_ours(case.query, case.planning, seed, budget_s, cpu_budget=True),
+        PLANNERS[1]: lambda: plan_ompl(case.query, case.planning, budget_s, cpu_budget=True),
         PLANNERS[2]: lambda: plan_ompl(case.query, case.pybullet, budget_s, cpu_budget=True),
     }
     order = PLANNERS[turn % 3 :] + PLANNERS[: turn % 3]

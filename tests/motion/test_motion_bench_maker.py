@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from kitchen_tamp.motion.geometry.described_scene import DescribedScene
 from kitchen_tamp.motion.geometry.primitive_scene import OBSTACLES_BODY, obstacle_links
 from kitchen_tamp.motion.geometry.urdf import read_urdf
 from kitchen_tamp.motion.motion_bench_maker import (
@@ -204,3 +205,53 @@ def test_a_problem_is_planned_with_the_spheres_and_the_path_is_free_for_drake(tm
     assert np.all(exact.is_valid(densify_path(path, JUDGE_RESOLUTION_RAD)))
     straight = densify_path(np.stack([problem.start, problem.goals[0]]), 0.01)
     assert not np.all(exact.is_valid(straight))  # the wall makes it a detour
+
+
+def _table_scene_with_ball(centre: np.ndarray, radius: float, directory: Path) -> DescribedScene:
+    """The table problem's scene with its ball moved to ``centre`` and given ``radius``."""
+    x, y, z = (float(v) for v in centre)
+    text = TABLE_SCENE.replace("position: [0.5, 0.6, 0.5]", f"position: [{x!r}, {y!r}, {z!r}]")
+    text = text.replace("dimensions: [0.05]", f"dimensions: [{float(radius)!r}]")
+    directory.mkdir()
+    return mbm_scene(read_mbm_problem("table_pick", 7, text, TABLE_REQUEST), panda_urdf_path(), directory)
+
+
+@pytest.mark.slow
+def test_a_goal_within_the_spheres_slack_is_planned_to_with_drake_confirming_near_it(tmp_path: Path) -> None:
+    from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
+    from kitchen_tamp.motion import (
+        ConfigurationSpace,
+        PlanStatus,
+        densify_path,
+        plan_rrt_connect,
+        shortcut_path,
+    )
+    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.screening import EndConfirmedChecker
+
+    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
+    start, goal = problem.start, problem.goals[0]
+    tree = SphereCollisionChecker(mbm_scene(problem, panda_urdf_path(), tmp_path / "plain")).model.tree
+    hand = tree.link_poses(goal[np.newaxis])[0, tree.link_index["panda_hand"], :3, 3]
+    # a ball beside the hand, grown until Drake finds the goal 2 mm from it
+    centre, probe_radius, clearance = hand + np.array([0.12, 0.0, -0.1]), 0.02, 0.002
+    gap = DrakeCollisionChecker(
+        _table_scene_with_ball(centre, probe_radius, tmp_path / "probe")
+    ).min_distance(goal)
+    scene = _table_scene_with_ball(centre, probe_radius + gap - clearance, tmp_path / "near")
+    spheres, exact = SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
+    assert exact.min_distance(goal) == pytest.approx(clearance, abs=1e-4)
+    assert not spheres.is_valid_without_padding(goal[np.newaxis])[0]  # within the spheres' slack
+    space = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)
+    alone = plan_rrt_connect(start, goal, space, spheres, seed=3, time_budget_s=math.inf)
+    assert alone.status is PlanStatus.GOAL_IN_COLLISION
+
+    confirmed = EndConfirmedChecker(spheres, exact, [start, goal], exact_is_bare=True)
+    assert np.array_equal(confirmed.ends, goal[np.newaxis])  # the start is clear for the spheres
+    planned = plan_rrt_connect(start, goal, space, confirmed, seed=3, time_budget_s=math.inf)
+    assert planned.path is not None
+    path = shortcut_path(planned.path, confirmed, seed=3, time_budget_s=math.inf).path
+    assert np.allclose(path[0], start) and np.allclose(path[-1], goal)
+    assert np.all(exact.is_valid(densify_path(path, JUDGE_RESOLUTION_RAD)))
+    assert confirmed.screened.exact_checks > 0

@@ -1,8 +1,9 @@
 """A tree of joint configurations with vectorised nearest-neighbour search.
 
 Nodes live in a preallocated (capacity, d) array that doubles when full, so
-finding the nearest node is one numpy reduction over the filled rows rather
-than a Python scan over a list.
+finding the nearest node is one matrix-vector product over the filled rows
+(with each node's squared norm kept beside it: |x - q|^2 = |x|^2 - 2 x.q + |q|^2,
+the last term the same for every node) rather than a Python scan over a list.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ class ConfigurationTree:
         capacity = max(1, initial_capacity)
         self._nodes = np.empty((capacity, root.size), dtype=np.float64)
         self._parents = np.empty(capacity, dtype=np.intp)
+        self._squared_norms = np.empty(capacity, dtype=np.float64)
         self._size = 0
         self.add(root, NO_PARENT)
 
@@ -46,14 +48,14 @@ class ConfigurationTree:
             self._grow()
         self._nodes[self._size] = q
         self._parents[self._size] = parent
+        self._squared_norms[self._size] = float(q @ q)
         self._size += 1
         return self._size - 1
 
     def nearest(self, q: JointConfiguration) -> int:
         """Index of the node closest to `q` (Euclidean joint-space distance)."""
-        differences = self._nodes[: self._size] - q
-        squared = np.einsum("ij,ij->i", differences, differences)
-        return int(np.argmin(squared))
+        filled = self._size
+        return int(np.argmin(self._squared_norms[:filled] - 2.0 * (self._nodes[:filled] @ q)))
 
     def path_from_root(self, index: int) -> JointConfigurations:
         """Configurations from the root to node `index`, shape (m, d)."""
@@ -68,6 +70,8 @@ class ConfigurationTree:
         capacity = 2 * len(self._nodes)
         nodes = np.empty((capacity, self._nodes.shape[1]), dtype=np.float64)
         parents = np.empty(capacity, dtype=np.intp)
+        squared_norms = np.empty(capacity, dtype=np.float64)
         nodes[: self._size] = self._nodes[: self._size]
         parents[: self._size] = self._parents[: self._size]
-        self._nodes, self._parents = nodes, parents
+        squared_norms[: self._size] = self._squared_norms[: self._size]
+        self._nodes, self._parents, self._squared_norms = nodes, parents, squared_norms

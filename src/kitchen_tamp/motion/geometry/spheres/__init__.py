@@ -8,6 +8,8 @@ prove it. ``scene`` places them on a ``kinematics`` tree read from the URDF;
 
 - `SphereCollisionChecker` (``checker``): batched validity, segments, signed distances;
 - `SphereScreenedChecker` (``screening``): spheres accept, an exact model decides the rest;
+- `EndConfirmedChecker` (``screening``): spheres throughout, an exact model deciding near a start
+  or goal within the spheres' overshoot of an obstacle;
 - `SphereClearance` (``clearance``): one smooth clearance value per configuration, for
   trajectory optimisation.
 
@@ -17,11 +19,12 @@ The model's internals are described in ``docs/sphere-model.md``.
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
 from kitchen_tamp.motion.geometry.spheres.scene import PYBULLET_MESH_MARGIN, SphereScene
-from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+from kitchen_tamp.motion.geometry.spheres.screening import EndConfirmedChecker, SphereScreenedChecker
 from kitchen_tamp.motion.geometry.spheres.stored_spheres import sphere_cache_directory
 
 __all__ = [
     "PYBULLET_MESH_MARGIN",
+    "EndConfirmedChecker",
     "SphereClearance",
     "SphereCollisionChecker",
     "SphereScene",

@@ -13,7 +13,9 @@ as long as the spheres model the same scene with the same margin.
 
 from __future__ import annotations
 
+import math
 import time
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Generic, Protocol, TypeVar
 
 import numpy as np
@@ -116,6 +118,15 @@ class SphereScreenedChecker(Generic[Exact]):
                 return int(index)
         return None
 
+    def exact_verdicts(self, qs: JointConfigurations) -> ValidityMask:
+        """The exact model's verdicts on rows the spheres rejected (rows the bare spheres clear are
+        valid without asking when ``exact_is_bare``); remembered ones are not asked again."""
+        return self._exact_verdicts(np.atleast_2d(np.asarray(qs, dtype=float)))
+
+    def exact_valid(self, q: JointConfiguration) -> bool:
+        """The exact model's verdict on one configuration the spheres rejected (as ``exact_verdicts``)."""
+        return bool(self.exact_verdicts(q)[0])
+
     def _exact_valid(self, q: JointConfiguration) -> bool:
         """The exact model's verdict on one configuration, remembered."""
         key = q.tobytes()
@@ -136,3 +147,121 @@ class SphereScreenedChecker(Generic[Exact]):
     ) -> tuple[float, JointConfiguration]:
         """The exact model's minimum signed distance and its gradient."""
         return self.exact.signed_distance(q)
+
+
+DEFAULT_END_REACH = 0.2
+"""How far (rad, joint-space Euclidean) from an end the spheres reject an `EndConfirmedChecker` asks
+the exact model about their rejections: far enough to leave the few millimetres of the spheres'
+overshoot in most directions (0.2 rad moves the hand by centimetres)."""
+
+
+class EndConfirmedChecker(Generic[Exact]):
+    """The sphere model, compiled segments and all, except near a given end (a query's start or goal)
+    the spheres reject but ``exact`` accepts: there the spheres' rejections are confirmed by ``exact``.
+
+    An end within the spheres' overshoot of an obstacle (millimetres from it for the exact model)
+    would make the sphere model refuse the query, and every move out of it; the exact model
+    decides near such an end and the spheres everywhere else. Ends the spheres accept add nothing,
+    so a query with free ends is checked by the spheres alone, at their speed."""
+
+    def __init__(
+        self,
+        spheres: SphereCollisionChecker,
+        exact: Exact,
+        ends: Sequence[JointConfiguration],
+        reach: float = DEFAULT_END_REACH,
+        *,
+        exact_is_bare: bool = False,
+    ) -> None:
+        self.spheres = spheres
+        self.screened = SphereScreenedChecker(spheres, exact, exact_is_bare=exact_is_bare)
+        self.reach = float(reach)
+        self.lower: JointConfiguration = spheres.lower
+        self.upper: JointConfiguration = spheres.upper
+        self.segment_resolution = spheres.segment_resolution
+        candidates = np.atleast_2d(np.asarray(ends, dtype=float)).reshape(-1, len(self.lower))
+        rejected = candidates[~spheres.is_valid(candidates)] if len(candidates) else candidates
+        confirmed = self.screened.exact_verdicts(rejected) if len(rejected) else np.zeros(0, dtype=np.bool_)
+        self.ends: JointConfigurations = rejected[confirmed]
+        """The ends the spheres reject and the exact model accepts: where the exact model decides."""
+        self._segments = CountingSegmentChecker(self, spheres.segment_resolution)
+
+    def _near_ends(self, qs: JointConfigurations) -> ValidityMask:
+        """Per row of ``qs``: whether it lies within ``reach`` of one of ``ends``."""
+        gaps = np.linalg.norm(qs[:, np.newaxis, :] - self.ends[np.newaxis], axis=2)
+        return np.asarray(np.any(gaps <= self.reach, axis=1), dtype=np.bool_)
+
+    def _segment_nears_ends(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
+        """Whether the straight segment q0 -> q1 passes within ``reach`` of one of ``ends``."""
+        if len(self.ends) == 0:
+            return False
+        step = q1 - q0
+        squared = float(step @ step)
+        along = (
+            np.clip((self.ends - q0) @ step / squared, 0.0, 1.0)
+            if squared > 0.0
+            else np.zeros(len(self.ends))
+        )
+        closest = q0 + along[:, np.newaxis] * step
+        return bool(np.any(np.linalg.norm(self.ends - closest, axis=1) <= self.reach))
+
+    def is_valid(self, qs: JointConfigurations) -> ValidityMask:
+        batch = np.atleast_2d(np.asarray(qs, dtype=float))
+        valid = self.spheres.is_valid(batch)
+        if len(self.ends) and not valid.all():
+            asked = np.flatnonzero(~valid)
+            asked = asked[self._near_ends(batch[asked])]
+            if len(asked):
+                valid[asked] = self.screened.exact_verdicts(batch[asked])
+        return valid
+
+    def first_invalid(self, qs: JointConfigurations) -> int | None:
+        """Index of the first invalid row, or None; the exact model is asked in order about the
+        rejected rows near an end, up to the first rejection it confirms or that is not near one."""
+        batch = np.atleast_2d(np.asarray(qs, dtype=float))
+        valid = self.spheres.is_valid(batch)
+        rejected = np.flatnonzero(~valid)
+        if len(rejected) == 0:
+            return None
+        if len(self.ends) == 0:
+            return int(rejected[0])
+        near = self._near_ends(batch[rejected])
+        for index, is_near in zip(rejected.tolist(), near.tolist(), strict=True):
+            if not is_near or not self.screened.exact_valid(batch[index]):
+                return int(index)
+        return None
+
+    def segment_checked(
+        self,
+        q0: JointConfiguration,
+        q1: JointConfiguration,
+        intervals: int,
+        check_start: bool,
+        check_end: bool,
+    ) -> tuple[bool, int]:
+        """`CompiledSegments.segment_checked`: the spheres' compiled check, and where they reject a
+        segment near an end, its states again with the exact model deciding near the end."""
+        free, checked = self.spheres.segment_checked(q0, q1, intervals, check_start, check_end)
+        if free or not self._segment_nears_ends(q0, q1):
+            return free, checked
+        fractions = np.arange(0 if check_start else 1, intervals + 1 if check_end else intervals) / intervals
+        states = q0 + fractions[:, np.newaxis] * (q1 - q0)
+        return self.first_invalid(states) is None, checked + len(states)
+
+    def free_prefix_checked(
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+    ) -> tuple[float, int]:
+        """`CompiledSegments.free_prefix_checked`, with the exact model deciding near an end."""
+        length, checked = self.spheres.free_prefix_checked(q0, q1, distance, resolution)
+        if length >= distance or not self._segment_nears_ends(q0, q1):
+            return length, checked
+        lengths = (
+            np.append(np.arange(1, math.ceil(distance / resolution)), distance / resolution) * resolution
+        )
+        first = self.first_invalid(q0 + (lengths[:, np.newaxis] / distance) * (q1 - q0))
+        if first is None:
+            return distance, checked + len(lengths)
+        return (float(lengths[first - 1]) if first else 0.0), checked + len(lengths)
+
+    def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
+        return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))
