@@ -115,6 +115,17 @@ def test_without_feedback_the_same_budgets_run_out_on_plans_that_pick_behind_the
     assert result.outcome is Outcome.PLAN_BUDGET
 
 
+def test_plans_refuted_by_what_they_taught_do_not_count_against_the_plan_budget() -> None:
+    task = nonmonotonic_task()
+    budgets = SesameBudgets(max_plans=1, samples_per_step=4)
+    result = solve(task, teach=True, budgets=budgets)
+    refuted = [a for a in result.attempts if a.outcome is Outcome.PLAN_REFUTED]
+    assert result.solved and len(refuted) == len(result.learned) == 2
+    assert result.counts.abstract_plans == 3  # the report still counts every plan tried
+    untaught = solve(task, teach=False, budgets=budgets)
+    assert untaught.outcome is Outcome.PLAN_BUDGET and untaught.counts.abstract_plans == 1
+
+
 @pytest.mark.parametrize("family", ["sort_clutter"])
 def test_a_large_task_yields_plans_best_first_without_delay(family: str) -> None:
     task = load_task(BENCHMARKS / family / "problem.pddl")

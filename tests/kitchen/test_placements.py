@@ -21,6 +21,7 @@ from kitchen_tamp.kitchen import (
     sample_targets,
 )
 from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.kitchen.skills.parameters import DEFAULT_PARAMETERS
 from kitchen_tamp.kitchen.skills.placements import boxes_overlap, fits_somewhere
 from kitchen_tamp.planning import load_task
 from kitchen_tamp.shipped_kitchens import kitchen_folder
@@ -158,3 +159,26 @@ def test_a_box_too_large_for_the_region_is_named_as_such(
         sample_targets(tray, "place", ("glass", "sink"), np.random.default_rng(0))
     assert failed.value.kind is FailureKind.TOO_LARGE and failed.value.region == "sink"
     assert "glass fits sink in no orientation" in str(failed.value)
+
+
+def test_a_box_placed_among_parked_boxes_keeps_the_placement_gap_from_each() -> None:
+    gap = DEFAULT_PARAMETERS.placement_gap
+    with kitchen_of("sort_clutter") as kitchen:
+        region = kitchen.region("blue_region")
+        parked = ("clutter1", "clutter2", "clutter4")
+        size = kitchen.box_size("clutter3")
+        for i, box in enumerate(parked):  # a row across the region, a box's width apart
+            height = kitchen.box_size(box)[2] / 2 + 0.001
+            at = region.world_from_region @ Pose(((i - 1) * 2 * size[0], 0.0, height))
+            kitchen.scene.set_base_pose(kitchen.box(box), at)
+        last = kitchen.box("clutter4").base_pose()
+        assert boxes_overlap(last @ Pose((0.0, size[1] + 0.004, 0.0)), size, last, size, gap)  # 4 mm apart
+        act(kitchen, "pick clutter3 table")
+        holding = kitchen.scene.save_state()
+        for seed in range(3):
+            kitchen.scene.restore_state(holding)
+            act(kitchen, "place clutter3 blue_region", seed)
+            placed = kitchen.box("clutter3").base_pose()
+            assert ("on", "clutter3", "blue_region") in abstract_state(kitchen)
+            assert not [b for b in parked
+                        if boxes_overlap(placed, size, kitchen.box(b).base_pose(), size, gap - 1e-6)]

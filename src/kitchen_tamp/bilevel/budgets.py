@@ -17,7 +17,11 @@ class SesameBudgets:
     ``kitchen_tamp.refinement.KITCHEN_BUDGETS``)."""
 
     max_plans: int | None = 100
-    """Abstract plans to try, best first."""
+    """Abstract plans to try, best first. A plan dropped at its first failure because a fact
+    that failure taught rules it out (``Outcome.PLAN_REFUTED``) does not count: every such plan
+    taught something new, so the budget grows with what the task has to teach (one learned
+    obstruction for a blocked box, several for a cluttered row) and bounds only the plans that
+    failed for reasons the search cannot learn."""
     samples_per_step: int = 10
     """Samples per visit of a step, successes included, before stepping back."""
     max_samples: int | None = None

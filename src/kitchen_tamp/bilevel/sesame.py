@@ -33,7 +33,10 @@ learns (``LearningPlanGenerator``), every failed sample's ``feedback`` is handed
 to it. If it learned something new that rules the current plan out, the plan is
 dropped at once (``Outcome.PLAN_REFUTED``) rather than backtracked over, and the
 following plans come from a fresh enumeration over what it knows now, skipping
-plans already tried.
+plans already tried. Such a dropped plan does not count against the plan budget: it
+taught the search a new fact, and the facts there are to learn are finite, so the
+search keeps enumerating while failures still teach it something (the sample and time
+budgets still bound the run).
 """
 
 from __future__ import annotations
@@ -170,6 +173,12 @@ def _plan_words(plan: AbstractPlan[S, A]) -> tuple[str, ...]:
     return tuple(str(action) for action in plan.actions)
 
 
+def _counted_plans(attempts: list[PlanAttempt[S, A]]) -> int:
+    """The abstract plans that count against ``max_plans``: a plan dropped because a fact it
+    taught rules it out does not (see ``SesameBudgets.max_plans``)."""
+    return sum(attempt.outcome is not Outcome.PLAN_REFUTED for attempt in attempts)
+
+
 def sesame(
     problem: BilevelProblem[X, U, S, A],
     budgets: SesameBudgets = DEFAULT_BUDGETS,
@@ -208,7 +217,7 @@ def sesame(
         return f"{tried}; last: {attempts[-1].detail}" if attempts else tried
 
     while True:
-        if max_plans is not None and len(attempts) >= max_plans:
+        if max_plans is not None and _counted_plans(attempts) >= max_plans:
             return result(Outcome.PLAN_BUDGET, failure_detail(Outcome.PLAN_BUDGET))
         spent = session.budget_spent()
         if spent is not None:

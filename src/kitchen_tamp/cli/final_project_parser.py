@@ -56,7 +56,8 @@ def _add_planning_options(sub: argparse.ArgumentParser, mode: str) -> None:
     sub.add_argument("--seed", type=_integer_at_least(0), default=0, help="random seed (default 0)")
     budgets = KITCHEN_BUDGETS
     sub.add_argument("--max-plans", type=_integer_at_least(1), default=budgets.max_plans, metavar="N",
-                     help="abstract plans SeSamE may try, shortest first (default %(default)s)")
+                     help="abstract plans SeSamE may try, shortest first; a plan dropped for a fact "
+                          "its failure taught does not count (default %(default)s)")
     sub.add_argument("--samples-per-step", type=_integer_at_least(1), default=budgets.samples_per_step,
                      metavar="N", help="samples of an action (targets + motion) before SeSamE "
                                        "steps back (default %(default)s)")

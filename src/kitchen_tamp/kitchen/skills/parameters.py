@@ -41,8 +41,13 @@ class SkillParameters:
     placement_draws: int = 20
     """Poses one placement sample may draw until one is clear of the boxes already there
     (drawing costs no motion; the first is clear on an empty region)."""
-    placement_gap: float = 0.003
-    """A placed box keeps at least this far from the boxes beside it."""
+    placement_gap: float = 0.006
+    """A placed box keeps at least this far from the boxes beside it (footprint to footprint).
+    Under physics a released box settles up to about 2 mm from where the plan put it, and
+    PyBullet makes a contact within 1 mm (``PhysicsSettings.contact_breaking_threshold``): two
+    neighbours that settle towards each other must still not touch, or the later pick of one
+    drags the other into the fingers. 3 mm left no room for that; a wider gap packs fewer
+    boxes into a region (the packed plate's five blocks)."""
 
     def __post_init__(self) -> None:
         if min(self.pregrasp_distance, self.lift_height, self.waypoint_step, self.max_joint_step) <= 0:
