@@ -43,6 +43,25 @@ def _holds(state_bytes: ByteArray, atom: int) -> bool:
 
 
 @numba.njit(cache=True)
+def _all_hold(state_bytes: ByteArray, atoms: IntArray, start: int, end: int) -> bool:
+    """Whether every atom of ``atoms[start:end]`` holds in the state (a loop: numba compiles no
+    generator expression into ``all``)."""
+    for position in range(start, end):  # noqa: SIM110
+        if not _holds(state_bytes, atoms[position]):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
+def _none_holds(state_bytes: ByteArray, atoms: IntArray, start: int, end: int) -> bool:
+    """Whether no atom of ``atoms[start:end]`` holds in the state."""
+    for position in range(start, end):  # noqa: SIM110
+        if _holds(state_bytes, atoms[position]):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
 def _push(heap: IntArray, size: int, key: int) -> int:
     """Push ``key`` onto the min-heap of ``size`` keys; the new size."""
     position = size
@@ -174,12 +193,7 @@ def supported_plan(state_bytes: ByteArray, targets: IntArray, cost: IntArray, su
     for index in range(length):
         action = plan[index]
         chosen[action] = 0
-        holds = True
-        for position in range(pre_start[action], pre_start[action + 1]):
-            if not _holds(state_bytes, pres[position]):
-                holds = False
-                break
-        if holds:
+        if _all_hold(state_bytes, pres, pre_start[action], pre_start[action + 1]):
             helpful[applicable] = action
             applicable += 1
     for index in range(touched):
@@ -198,17 +212,8 @@ def applicable_achievers(state_bytes: ByteArray, targets: IntArray, achievers_st
     for target in targets:
         for achiever_position in range(achievers_start[target], achievers_start[target + 1]):
             action = achievers[achiever_position]
-            applicable = True
-            for position in range(pre_start[action], pre_start[action + 1]):
-                if not _holds(state_bytes, pres[position]):
-                    applicable = False
-                    break
-            if applicable:
-                for position in range(neg_start[action], neg_start[action + 1]):
-                    if _holds(state_bytes, negs[position]):
-                        applicable = False
-                        break
-            if applicable:
+            if (_all_hold(state_bytes, pres, pre_start[action], pre_start[action + 1])
+                    and _none_holds(state_bytes, negs, neg_start[action], neg_start[action + 1])):
                 found[count] = action
                 count += 1
     return count
