@@ -58,3 +58,24 @@ def test_preparing_leaves_the_user_cache_empty(monkeypatch: pytest.MonkeyPatch, 
     assert prepare.main() == 0
     assert os.environ["XDG_CACHE_HOME"] == str(tmp_path)
     assert list(tmp_path.iterdir()) == []
+
+
+COMPILES = """
+from numba.core import event
+from kitchen_tamp.cli import prepare
+with event.install_recorder("numba:compile") as recorder:
+    prepare._compile_kernels()
+print(sorted({str(e.data["dispatcher"].py_func.__qualname__) for _, e in recorder.buffer if e.is_start}))
+"""
+
+
+@pytest.mark.slow
+def test_a_second_process_compiles_no_kernel(tmp_path: Path) -> None:
+    """Every compiled function a run calls comes from numba's cache once one process made it: one
+    left out (e.g. the constructor numba makes for a structref's Python class) costs seconds a run."""
+    environment = {**os.environ, "XDG_CACHE_HOME": str(tmp_path)}
+    for _ in range(2):
+        done = subprocess.run([sys.executable, "-c", COMPILES], cwd=REPO, env=environment,
+                              capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip().splitlines()[-1] == "[]"

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import numba
 import numpy as np
 import numpy.typing as npt
 from numba.core import types
@@ -119,11 +120,19 @@ def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
     )
 
 
+@numba.njit(cache=True)
+def _pack(fields: tuple[Any, ...]) -> ValidityArrays:
+    """``fields`` (in ``ALL_FIELDS`` order) as one `ValidityArrays`. Calling the proxy class from
+    Python would compile its constructor again in every process (numba does not cache it: 5-6 s
+    of one core a run); this compiled constructor is cached with the kernels."""
+    return ValidityArrays(*fields)  # type: ignore[no-untyped-call]
+
+
 def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
     """``arguments`` (in ``VALIDITY_FIELDS`` order) as one `ValidityArrays`, with the tables the
     kernel derives from them."""
     if len(arguments) != len(VALIDITY_FIELDS):
         raise ValueError(f"expected {len(VALIDITY_FIELDS)} kernel arrays, got {len(arguments)}")
     derived = _derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True)))
-    packed: ValidityArrays = ValidityArrays(*arguments, *derived)  # type: ignore[no-untyped-call]
+    packed: ValidityArrays = _pack((*arguments, *derived))
     return packed
