@@ -9,8 +9,9 @@ run it too (``kitchen-tamp-prepare``). It calls each kernel once, with the argum
 types a run gives it, on the default kitchen built in a throw-away cache folder,
 so nothing lands in the user's cache (no models, no spheres): their first run
 still starts from an empty cache. The activity planner's relaxed exploration
-(``kitchen_tamp.planning.relaxed_kernel``) is compiled the same way, on the
-default kitchen's task.
+(``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
+(``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
+the default kitchen's task.
 """
 
 from __future__ import annotations
@@ -48,17 +49,22 @@ def _compile_kernels() -> None:
 def _compile_planning_kernels(task: Task) -> None:
     from kitchen_tamp.planning.heuristics import RelaxedExploration
     from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+    from kitchen_tamp.planning.search.alternating_greedy import DEFAULT_BOOST
+    from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search
+    from kitchen_tamp.planning.search.result import SearchBudget
 
     evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
     evaluator.compiled_after_work = -1  # through the kernels from the first state
     evaluator.root()
+    compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1))
 
 
 def main() -> int:
     clock = time.perf_counter()
     # numba decides where its cache goes when the kernels are imported: before the cache moves
     import kitchen_tamp.motion.geometry.spheres
-    import kitchen_tamp.planning.relaxed_kernel  # noqa: F401
+    import kitchen_tamp.planning.relaxed_kernel
+    import kitchen_tamp.planning.search.greedy_kernel  # noqa: F401
 
     saved = os.environ.get("XDG_CACHE_HOME")
     with tempfile.TemporaryDirectory(prefix="kitchen_tamp-prepare-") as cache:

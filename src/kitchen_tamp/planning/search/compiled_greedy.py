@@ -1,0 +1,106 @@
+"""The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
+
+``alternating_greedy``'s lazy search hands a task over to this once its
+evaluator has switched to the compiled kernels (``LandmarkEvaluator``'s
+``COMPILED_AFTER_WORK``): the search then starts again from the root in the
+kernel, which takes the same steps as the Python search (the same queues,
+turns, ties, successor order and evaluations) and so returns the plan the
+Python search would, with the same counts. The arrays are laid out here once
+per task from the evaluator's compiled tables.
+"""
+
+from __future__ import annotations
+
+from itertools import pairwise
+
+import numpy as np
+
+from kitchen_tamp.planning.compiled_exploration import (
+    CompiledExploration,
+    CompiledLandmarkCount,
+    _bytes_of,
+    _flat,
+)
+from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+from kitchen_tamp.planning.search.breadth_first import unsolvable_message
+from kitchen_tamp.planning.search.greedy_kernel import OUT_OF_BUDGET, SOLVED, lazy_greedy_search
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
+from kitchen_tamp.planning.task import State, Task, bits
+
+SuccessorArrays = tuple[np.ndarray, ...]
+
+
+def _successor_arrays(task: Task, compiled: CompiledExploration) -> SuccessorArrays:
+    """Actions without positive preconditions, actions by key atom (CSR), preconditions, negative
+    preconditions, adds and deletes (CSR by action), as ``greedy_kernel._applicable`` and ``_apply`` read
+    them."""
+    keys = task.key_atoms
+    by_key: list[list[int]] = [[] for _ in task.atoms]
+    for index, key in enumerate(keys):
+        if key >= 0:
+            by_key[key].append(index)
+    key_start, key_actions = _flat(by_key)
+    delete_start, deletes = _flat(bits(action.delete) for action in task.actions)
+    unconditional = np.array([index for index, key in enumerate(keys) if key < 0], dtype=np.int64)
+    return (unconditional, key_start, key_actions, compiled.pre_start, compiled.pres, compiled.neg_start,
+            compiled.negs, compiled.adds_start, compiled.adds, delete_start, deletes)
+
+
+def _exploration_arrays(compiled: CompiledExploration) -> tuple[object, ...]:
+    return (compiled.n_atoms, compiled.users_start, compiled.users, compiled.adds_start, compiled.adds,
+            compiled.precondition_counts, compiled.free_actions, compiled.goal_ids, compiled.cost,
+            compiled.supporter, compiled.unsettled, compiled.settled_sum, compiled.heap,
+            compiled.offered_atoms, compiled.pre_start, compiled.pres, compiled.plan, compiled.helpful,
+            compiled.chosen, compiled.marked, compiled.marked_atoms, compiled.stack)
+
+
+def _landmark_arrays(compiled: CompiledExploration,
+                     count: CompiledLandmarkCount | None) -> tuple[object, ...]:
+    if count is None:  # the same types, empty: the kernel does not read them
+        empty_rows = np.zeros((0, compiled.state_bytes), dtype=np.uint8)
+        empty = np.zeros(0, dtype=np.int64)
+        blank = np.zeros(compiled.state_bytes, dtype=np.uint8)
+        return (False, empty, blank, empty_rows, empty_rows, blank.copy(), blank.copy(),
+                np.zeros(1, np.int64), compiled.achievers_start, compiled.achievers, compiled.neg_start,
+                compiled.negs, compiled.found)
+    return (True, count.landmark_atoms, count.goal, count.natural, count.greedy_necessary, count.unaccepted,
+            count.needed, count.targets, compiled.achievers_start, compiled.achievers, compiled.neg_start,
+            compiled.negs, compiled.found)
+
+
+def _plan_from(task: Task, parents: list[int], actions: list[int], goal_row: int) -> tuple[State, ...]:
+    """The states from the root to the goal row."""
+    steps: list[int] = []
+    row = goal_row
+    while parents[row] >= 0:
+        steps.append(actions[row])
+        row = parents[row]
+    states = [task.initial_state]
+    for action in reversed(steps):
+        states.append(task.actions[action].apply(states[-1]))
+    return tuple(states)
+
+
+def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int,
+                         budget: SearchBudget) -> SearchResult:
+    """``alternating_greedy._lazy`` from the root, in the kernel; ``evaluator`` has its compiled tables."""
+    compiled, count = evaluator.compiled, evaluator.compiled_count
+    assert compiled is not None
+    task = evaluator.exploration.task
+    size = compiled.state_bytes
+    settings = (2 if evaluator.count is not None else 1, boost, novelty,
+                -1 if budget.max_expansions is None else budget.max_expansions,
+                -1.0 if budget.deadline is None else budget.deadline)
+    outcome, goal_row, expanded, generated, evaluated, parents, actions = lazy_greedy_search(
+        _bytes_of(task.initial_state, size), _bytes_of(task.goal, size), _bytes_of(task.goal_neg, size),
+        _successor_arrays(task, compiled), _exploration_arrays(compiled), _landmark_arrays(compiled, count),
+        settings)
+    counts = (int(expanded), int(generated), int(evaluated))
+    if outcome == SOLVED:
+        states = _plan_from(task, parents.tolist(), actions.tolist(), int(goal_row))
+        plan = tuple(task.action_between(a, b) for a, b in pairwise(states))
+        return SearchResult("gbfs", "solved", plan, *counts, budget.elapsed())
+    if outcome == OUT_OF_BUDGET:
+        return SearchResult("gbfs", "budget", None, *counts, budget.elapsed(), budget.describe())
+    return SearchResult("gbfs", "unsolvable", None, *counts, budget.elapsed(),
+                        unsolvable_message(task, len(parents)))
