@@ -1,8 +1,8 @@
 """The compiled lazy greedy search takes the Python search's steps: the same plan after the same counts.
 
-The Python search hands over to the kernel once its evaluator switches to the compiled exploration;
-from the first state (``COMPILED_AFTER_WORK`` -1), after some Python work, or never, ``gbfs`` returns
-the same plan after the same expansions, generations and evaluations, and the plan is valid.
+The Python search hands over to the kernel (compiled ahead of time, or numba's JIT) from the first
+state, after some Python work, or never: ``gbfs`` returns the same plan after the same expansions,
+generations and evaluations, and the plan is valid.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ import pytest
 
 from kitchen_tamp.planning import landmark_count as landmark_count_module
 from kitchen_tamp.planning import load_task
+from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
 from kitchen_tamp.planning.task import Task
@@ -27,9 +28,21 @@ def _load(domain: str, problem: str) -> Task:
     return load_task(IPC / domain / problem, IPC / domain / "domain.pddl")
 
 
+@pytest.fixture(params=["ahead of time", "jit"])
+def kernel(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+    """Each test runs with the kernel compiled ahead of time (``make install``) and with numba's JIT."""
+    if request.param == "jit":
+        monkeypatch.setattr(loading, "ahead_of_time_kernel", lambda: None)
+    elif loading.ahead_of_time_kernel() is None:
+        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+    return str(request.param)
+
+
 def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expansions: int = 20_000,
             **options: bool) -> SearchResult:
+    """gbfs with the evaluator's switch and the hand-over both after ``after_work`` (never: 10**18)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
+    monkeypatch.setattr(loading, "HANDOVER_AFTER_WORK", after_work)
     return alternating_greedy_search(task, SearchBudget(None, expansions), **options)
 
 
@@ -40,7 +53,7 @@ def _counts(result: SearchResult) -> tuple[object, ...]:
 @pytest.mark.parametrize(("domain", "problem"), [("sokoban", "task23.pddl"), ("pegsol", "task13.pddl"),
                                                  ("rovers", "task08.pddl"), ("mystery", "instance-6.pddl"),
                                                  ("satellite", "task08.pddl")])
-def test_the_kernel_takes_the_python_searchs_steps(domain: str, problem: str,
+def test_the_kernel_takes_the_python_searchs_steps(domain: str, problem: str, kernel: str,
                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     task = _load(domain, problem)
     python = _search(task, 10**18, monkeypatch)
@@ -50,7 +63,8 @@ def test_the_kernel_takes_the_python_searchs_steps(domain: str, problem: str,
     assert validate_plan(task, python.plan).valid
 
 
-def test_the_hand_over_in_mid_search_gives_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_hand_over_in_mid_search_gives_the_same_search(kernel: str,
+                                                           monkeypatch: pytest.MonkeyPatch) -> None:
     task = _load("depot", "task13.pddl")
     python = _search(task, 10**18, monkeypatch)
     from kitchen_tamp.planning.heuristics import RelaxedExploration
@@ -63,14 +77,15 @@ def test_the_hand_over_in_mid_search_gives_the_same_search(monkeypatch: pytest.M
 
 
 @pytest.mark.parametrize("options", [{"landmarks": False}, {"novelty": False}])
-def test_the_kernel_follows_the_options(options: dict[str, bool], monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_kernel_follows_the_options(options: dict[str, bool], kernel: str,
+                                        monkeypatch: pytest.MonkeyPatch) -> None:
     task = _load("sokoban", "task01.pddl")
     python = _search(task, 10**18, monkeypatch, **options)
     assert python.solved
     assert _counts(_search(task, -1, monkeypatch, **options)) == _counts(python)
 
 
-def test_the_kernel_stops_at_the_expansion_budget(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_kernel_stops_at_the_expansion_budget(kernel: str, monkeypatch: pytest.MonkeyPatch) -> None:
     task = _load("sokoban", "task23.pddl")
     python = _search(task, 10**18, monkeypatch, expansions=300)
     compiled = _search(task, -1, monkeypatch, expansions=300)
@@ -79,12 +94,21 @@ def test_the_kernel_stops_at_the_expansion_budget(monkeypatch: pytest.MonkeyPatc
     assert (compiled.generated, compiled.evaluated) == (python.generated, python.evaluated)
 
 
-def test_a_small_task_does_not_import_numba() -> None:
+def _numba_imported_by_gbfs(domain: str, problem: str) -> bool:
     code = ("import sys\n"
             "from kitchen_tamp.planning import load_task, plan\n"
-            f"task = load_task({str(IPC / 'sokoban' / 'task01.pddl')!r}, "
-            f"{str(IPC / 'sokoban' / 'domain.pddl')!r})\n"
+            f"task = load_task({str(IPC / domain / problem)!r}, {str(IPC / domain / 'domain.pddl')!r})\n"
             "assert plan(task, 'gbfs').solved\n"
             "print('numba' in sys.modules)\n")
     output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert output.stdout.strip() == "False"
+    return output.stdout.strip() == "True"
+
+
+def test_a_small_task_does_not_import_numba() -> None:
+    assert not _numba_imported_by_gbfs("sokoban", "task01.pddl")
+
+
+def test_with_the_kernel_compiled_ahead_of_time_a_large_search_does_not_import_numba() -> None:
+    if loading.ahead_of_time_kernel() is None:
+        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+    assert not _numba_imported_by_gbfs("sokoban", "task23.pddl")

@@ -11,7 +11,8 @@ so nothing lands in the user's cache (no models, no spheres): their first run
 still starts from an empty cache. The activity planner's relaxed exploration
 (``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
 (``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
-the default kitchen's task.
+the default kitchen's task, and the search once more ahead of time into an
+extension module that runs without numba (``greedy_ahead``).
 """
 
 from __future__ import annotations
@@ -51,12 +52,15 @@ def _compile_planning_kernels(task: Task) -> None:
     from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
     from kitchen_tamp.planning.search.alternating_greedy import DEFAULT_BOOST
     from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search
+    from kitchen_tamp.planning.search.greedy_ahead import compile_ahead_of_time
+    from kitchen_tamp.planning.search.greedy_kernel_loading import jit_kernel
     from kitchen_tamp.planning.search.result import SearchBudget
 
     evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
     evaluator.compiled_after_work = -1  # through the kernels from the first state
     evaluator.root()
-    compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1))
+    compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
+    compile_ahead_of_time()  # with the signature of that run
 
 
 def main() -> int:

@@ -3,10 +3,13 @@
 ``CompiledExploration`` lays a ``RelaxedExploration``'s tables out as flat int
 arrays once per task and answers as its ``additive_costs`` and
 ``supported_plan`` do (the same costs, supporters, plans and helpful actions),
-in a fraction of the time on large tasks. Importing this module imports numpy
-and numba, about half a second with the kernels read from numba's cache, which
-a small task never earns back: ``LandmarkEvaluator`` imports it only once it
-has done enough work in Python (``COMPILED_AFTER_WORK``).
+in a fraction of the time on large tasks. Importing this module imports numpy;
+its methods import numba and the kernels (``relaxed_kernel``), about a second
+with the kernels read from numba's cache, which a small task never earns back:
+``LandmarkEvaluator`` calls them only once it has done enough work in Python
+(``COMPILED_AFTER_WORK``). The compiled greedy search (``search.compiled_greedy``)
+reads the arrays laid out here without importing numba when its module compiled
+ahead of time is there.
 """
 
 from __future__ import annotations
@@ -17,19 +20,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
-from kitchen_tamp.planning.relaxed_kernel import (
-    UNREACHED,
-    ByteArray,
-    IntArray,
-    additive_exploration,
-    applicable_achievers,
-    landmark_count,
-    supported_plan,
-)
 from kitchen_tamp.planning.task import State, bits
 
 if TYPE_CHECKING:
     from kitchen_tamp.planning.landmark_count import LandmarkCount
+    from kitchen_tamp.planning.relaxed_kernel import ByteArray, IntArray
 
 
 def _flat(rows: Iterable[Iterable[int]]) -> tuple[IntArray, IntArray]:
@@ -99,6 +94,8 @@ class CompiledExploration:
     def explore(self, state: State) -> ByteArray | None:
         """Run h_add's exploration from ``state`` (costs in ``self.cost``): the state's bytes, None at a
         dead end."""
+        from kitchen_tamp.planning.relaxed_kernel import additive_exploration
+
         state_array = self._state_array(state)
         reached = additive_exploration(
             state_array, self.n_atoms, self.users_start, self.users, self.adds_start, self.adds,
@@ -109,6 +106,8 @@ class CompiledExploration:
     def plan_and_helpful(self, state_array: ByteArray, targets: IntArray | None = None) -> tuple[int, int]:
         """The size of the best supporters' relaxed plan to ``targets`` (default: the goal) from the last
         exploration, and its actions applicable in the state, as a bitset over action indices."""
+        from kitchen_tamp.planning.relaxed_kernel import supported_plan
+
         length, applicable = supported_plan(
             state_array, self.goal_ids if targets is None else targets, self.cost, self.supporter,
             self.pre_start, self.pres, self.plan, self.helpful, self.chosen, self.marked,
@@ -118,6 +117,8 @@ class CompiledExploration:
     def achieving(self, state_array: ByteArray, targets: IntArray) -> int:
         """The actions achieving one of the atoms ``targets`` that are applicable in the state, as a bitset
         (``LandmarkCount.achieving_actions`` with this object's ``achievers``)."""
+        from kitchen_tamp.planning.relaxed_kernel import applicable_achievers
+
         count = applicable_achievers(
             state_array, targets, self.achievers_start, self.achievers, self.pre_start, self.pres,
             self.neg_start, self.negs, self.found)
@@ -126,6 +127,8 @@ class CompiledExploration:
     def helpful_towards_nearest(self, state_array: ByteArray, atoms: IntArray) -> int:
         """The applicable actions of the relaxed plan to the cheapest of the atoms ``atoms`` (ascending) in
         the last exploration (``LandmarkEvaluator._towards_nearest``), as a bitset; 0 if none is reached."""
+        from kitchen_tamp.planning.relaxed_kernel import UNREACHED
+
         target_costs = self.cost[atoms]
         nearest = target_costs.min(initial=UNREACHED)
         if nearest == UNREACHED:
@@ -134,6 +137,8 @@ class CompiledExploration:
 
     def costs(self) -> list[float]:
         """The last exploration's costs as ``RelaxedExploration.additive_costs`` gives them."""
+        from kitchen_tamp.planning.relaxed_kernel import UNREACHED
+
         return [INFINITY if value == UNREACHED else value for value in self.cost.tolist()]
 
     def supporters(self) -> list[int]:
@@ -157,6 +162,8 @@ class CompiledLandmarkCount:
 
     def value(self, state_array: ByteArray, accepted: int) -> tuple[int, IntArray]:
         """h_LM of the state and the landmarks to reach next, ascending (a view of work space)."""
+        from kitchen_tamp.planning.relaxed_kernel import landmark_count
+
         h, count = landmark_count(
             state_array, _bytes_of(accepted, self.state_bytes), self.landmark_atoms, self.goal, self.natural,
             self.greedy_necessary, self.unaccepted, self.needed, self.targets)

@@ -39,6 +39,7 @@ from typing import Generic, TypeVar
 
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.landmark_count import Evaluation, LandmarkEvaluator
+from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
@@ -199,8 +200,9 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
     successors, heuristics = task.successor_indices, queues.heuristics
     closed: dict[State, State | None] = {}  # each evaluated state's parent
     accepted: dict[State, int] = {}  # each expanded state's accepted landmarks
-    if evaluator.compiled is not None:
-        return _compiled(evaluator, novel, queues, budget)
+    handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget)
+    if (handed_over := handover.search()) is not None:
+        return handed_over
     root_evaluation = evaluator.root()
     queues.push(_values(root_evaluation, heuristics), (None, root), preferred=False)
     progress = _Progress(_values(root_evaluation, heuristics))
@@ -216,8 +218,8 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
             continue
         closed[state] = parent
         evaluation = root_evaluation if parent is None else evaluator.child(state, accepted[parent])
-        if evaluator.compiled is not None:  # the search outgrew Python: again from the root, compiled
-            return _compiled(evaluator, novel, queues, budget)
+        if handover.due() and (handed_over := handover.search()) is not None:
+            return handed_over  # the search outgrew Python: again from the root, compiled
         evaluated += 1
         if evaluation.h_ff == INFINITY:
             continue
@@ -238,9 +240,36 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
                         budget.elapsed(), unsolvable_message(task, len(closed)))
 
 
-def _compiled(evaluator: LandmarkEvaluator, novel: Novelty,
-              queues: AlternatingQueues[tuple[State | None, State]], budget: SearchBudget) -> SearchResult:
-    """The lazy search from the root in the compiled kernel: the same steps as ``_lazy``, much faster."""
-    from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numba: large tasks only
 
-    return compiled_lazy_search(evaluator, novel.enabled, queues.boost_amount, budget)
+class _Handover:
+    """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
+
+    Once the evaluations' Python work passes ``loading.HANDOVER_AFTER_WORK``, the kernel compiled ahead
+    of time is looked for; without it, the search goes over to numba's JIT kernel when the evaluator has
+    switched to the JIT exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
+
+    def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
+        self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
+        self.after_work = float(loading.HANDOVER_AFTER_WORK)
+        self.ahead_of_time_looked_for = False
+
+    def due(self) -> bool:
+        evaluator = self.evaluator
+        return (evaluator.compiled is not None
+                or evaluator.evaluations * evaluator.work_per_evaluation > self.after_work)
+
+    def search(self) -> SearchResult | None:
+        """The compiled search's result, or None: no kernel yet (go on in Python)."""
+        kernel = None
+        if not self.ahead_of_time_looked_for and self.due():
+            self.ahead_of_time_looked_for = True
+            self.after_work = INFINITY
+            kernel = loading.ahead_of_time_kernel()
+        if kernel is None and self.evaluator.compiled is not None:
+            kernel = loading.jit_kernel()
+        if kernel is None:
+            return None
+        from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy: large tasks
+
+        return compiled_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, kernel)
+

@@ -1,12 +1,13 @@
 """The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
 
-``alternating_greedy``'s lazy search hands a task over to this once its
-evaluator has switched to the compiled kernels (``LandmarkEvaluator``'s
-``COMPILED_AFTER_WORK``): the search then starts again from the root in the
-kernel, which takes the same steps as the Python search (the same queues,
-turns, ties, successor order and evaluations) and so returns the plan the
-Python search would, with the same counts. The arrays are laid out here once
-per task from the evaluator's compiled tables.
+``alternating_greedy``'s lazy search hands a task over to this once it has done
+enough work in Python (``greedy_kernel_loading.HANDOVER_AFTER_WORK`` with the kernel compiled ahead
+of time, else once its evaluator switches to the JIT kernels): the search then
+starts again from the root in the kernel, which takes the same steps as the
+Python search (the same queues, turns, ties, successor order and evaluations)
+and so returns the plan the Python search would, with the same counts. The
+arrays are laid out here once per task (``CompiledExploration``'s tables).
+Importing this module imports numpy, not numba.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from kitchen_tamp.planning.compiled_exploration import (
 )
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
-from kitchen_tamp.planning.search.greedy_kernel import OUT_OF_BUDGET, SOLVED, lazy_greedy_search
+from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, GreedyKernel
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
 from kitchen_tamp.planning.task import State, Task, bits
 
@@ -81,17 +82,21 @@ def _plan_from(task: Task, parents: list[int], actions: list[int], goal_row: int
     return tuple(states)
 
 
-def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int,
-                         budget: SearchBudget) -> SearchResult:
-    """``alternating_greedy._lazy`` from the root, in the kernel; ``evaluator`` has its compiled tables."""
+def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
+                         kernel: GreedyKernel) -> SearchResult:
+    """``alternating_greedy._lazy`` from the root, in ``kernel`` (``greedy_kernel_loading``'s)."""
     compiled, count = evaluator.compiled, evaluator.compiled_count
-    assert compiled is not None
+    if compiled is None:  # the tables without the evaluator's switch (which would import numba)
+        compiled = CompiledExploration(evaluator.exploration,
+                                       None if evaluator.count is None else evaluator.count.achievers)
+        if evaluator.count is not None:
+            count = CompiledLandmarkCount(evaluator.count, compiled.state_bytes)
     task = evaluator.exploration.task
     size = compiled.state_bytes
     settings = (2 if evaluator.count is not None else 1, boost, novelty,
                 -1 if budget.max_expansions is None else budget.max_expansions,
                 -1.0 if budget.deadline is None else budget.deadline)
-    outcome, goal_row, expanded, generated, evaluated, parents, actions = lazy_greedy_search(
+    outcome, goal_row, expanded, generated, evaluated, parents, actions = kernel(
         _bytes_of(task.initial_state, size), _bytes_of(task.goal, size), _bytes_of(task.goal_neg, size),
         _successor_arrays(task, compiled), _exploration_arrays(compiled), _landmark_arrays(compiled, count),
         settings)

@@ -16,16 +16,17 @@ open-addressing hash table of their row numbers. A queued entry is a
 as Fast Downward's lazy search does. A heap key is ``h << ORDER_BITS | order``,
 ``order`` counting the pushes, so equal h goes first-in first-out.
 
-This module imports numba: ``compiled_greedy`` imports it, only for tasks whose
-search has outgrown Python.
+This module imports numba: ``greedy_kernel_loading`` imports it only when no
+module compiled ahead of time from it is there (``greedy_ahead``).
 """
 
 from __future__ import annotations
 
-import time
-
 import numba
 import numpy as np
+from llvmlite import ir  # type: ignore[import-untyped]
+from numba.core import cgutils, types
+from numba.extending import intrinsic
 
 from kitchen_tamp.planning.relaxed_kernel import (
     UNREACHED,
@@ -41,22 +42,36 @@ from kitchen_tamp.planning.relaxed_kernel import (
     landmark_count,
     supported_plan,
 )
+from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, UNSOLVABLE
 
 ORDER_BITS = 40
 """Bits of a queue key below h: the push's number, so equal h goes first-in first-out."""
-
-SOLVED, UNSOLVABLE, OUT_OF_BUDGET = 0, 1, 2
-"""The search's outcomes as the kernel returns them."""
 
 CLOCK_EVERY = 64
 """The clock is read every this many expansions (``SearchBudget.CLOCK_EVERY``'s role)."""
 
 
-@numba.njit(cache=True)
-def _clock() -> float:
-    with numba.objmode(now="float64"):
-        now = time.perf_counter()
-    return now
+CLOCK_MONOTONIC = 1
+"""Linux's ``clock_gettime`` clock id behind ``time.perf_counter``."""
+
+
+@intrinsic
+def _monotonic(typing_context):  # type: ignore[no-untyped-def]
+    """``time.perf_counter()`` in compiled code: libc's ``clock_gettime(CLOCK_MONOTONIC)`` in seconds (a call
+    into libc, so that the module compiled ahead of time needs no Python to read the clock)."""
+    def generate(context, builder, signature, arguments):  # type: ignore[no-untyped-def]
+        word = ir.IntType(64)
+        timespec = ir.LiteralStructType([word, word])
+        function = cgutils.get_or_insert_function(  # type: ignore[no-untyped-call]
+            builder.module, ir.FunctionType(ir.IntType(32), [ir.IntType(32), timespec.as_pointer()]),
+            "clock_gettime")
+        slot = cgutils.alloca_once(builder, timespec)  # type: ignore[no-untyped-call]
+        builder.call(function, [ir.Constant(ir.IntType(32), CLOCK_MONOTONIC), slot])
+        seconds = builder.sitofp(builder.load(cgutils.gep_inbounds(builder, slot, 0, 0)), ir.DoubleType())  # type: ignore[no-untyped-call]
+        nanoseconds = builder.sitofp(builder.load(cgutils.gep_inbounds(builder, slot, 0, 1)), ir.DoubleType())  # type: ignore[no-untyped-call]
+        return builder.fadd(seconds, builder.fmul(nanoseconds, ir.Constant(ir.DoubleType(), 1e-9)))
+
+    return types.float64(), generate
 
 
 @numba.njit(cache=True)
@@ -251,7 +266,7 @@ def lazy_greedy_search(root, goal, goal_neg, successors, exploration, landmarks,
     while sizes.sum() > 0:
         if expanded >= check_at:
             if ((max_expansions >= 0 and expanded >= max_expansions)
-                    or (deadline >= 0.0 and _clock() > deadline)):
+                    or (deadline >= 0.0 and _monotonic() > deadline)):  # type: ignore[call-arg]
                 return OUT_OF_BUDGET, -1, expanded, generated, evaluated, parents[:n_rows], actions[:n_rows]
             check_at = expanded + CLOCK_EVERY if deadline >= 0.0 else np.iinfo(np.int64).max
             if max_expansions >= 0:

@@ -1,0 +1,73 @@
+"""Where the compiled greedy search comes from: the module compiled ahead of time, or numba's JIT.
+
+Importing numba costs about 0.7 s of CPU and reading the JIT kernels from its
+cache some tenths more, which is more than many whole searches take. So
+``make install`` (``python -m kitchen_tamp.cli.prepare``) also compiles
+``greedy_kernel.lazy_greedy_search`` ahead of time with numba's ``pycc`` into
+an extension module in this package's ``__pycache__`` (``greedy_ahead``),
+named after a digest of the kernels' sources so that an edited kernel is never
+served by a stale module. Loading it needs numpy only (about 0.2 s). Without
+it (a read-only install, an edited kernel before the next ``make install``)
+the search runs through numba's JIT kernel, the same code.
+
+This module imports neither numpy nor numba.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.machinery
+import importlib.util
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+SOLVED, UNSOLVABLE, OUT_OF_BUDGET = 0, 1, 2
+"""The search's outcomes as the kernel returns them."""
+
+HANDOVER_AFTER_WORK = 1_000_000
+"""Evaluations times ``LandmarkEvaluator.work_per_evaluation`` after which the lazy greedy search hands over
+to the kernel compiled ahead of time: about the Python work that costs as much as importing numpy and laying
+out the arrays (a fifth of ``COMPILED_AFTER_WORK``, which pays for importing numba too)."""
+
+_HERE = Path(__file__).resolve().parent
+KERNEL_SOURCES = (_HERE / "greedy_kernel.py", _HERE.parent / "relaxed_kernel.py")
+"""The sources compiled into the search kernel: their digest names the module compiled ahead of time."""
+
+GreedyKernel = Callable[..., Any]
+
+
+def ahead_of_time_name() -> str:
+    """The module name of the search compiled ahead of time from the current sources."""
+    digest = hashlib.sha256()
+    for source in KERNEL_SOURCES:
+        digest.update(source.read_bytes())
+    return f"greedy_search_{digest.hexdigest()[:16]}"
+
+
+def ahead_of_time_folder() -> Path:
+    return _HERE / "__pycache__"
+
+
+def ahead_of_time_kernel() -> GreedyKernel | None:
+    """``lazy_greedy_search`` from the module compiled ahead of time; None without one for these sources."""
+    name = ahead_of_time_name()
+    for suffix in importlib.machinery.EXTENSION_SUFFIXES:
+        path = ahead_of_time_folder() / (name + suffix)
+        if path.exists():
+            spec = importlib.util.spec_from_file_location(name, path)
+            if spec is None or spec.loader is None:
+                return None
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+            kernel: GreedyKernel = module.lazy_greedy_search
+            return kernel
+    return None
+
+
+def jit_kernel() -> GreedyKernel:
+    """``lazy_greedy_search`` through numba's JIT (read from numba's cache after the first run)."""
+    from kitchen_tamp.planning.search.greedy_kernel import lazy_greedy_search
+
+    kernel: GreedyKernel = lazy_greedy_search
+    return kernel
