@@ -3,6 +3,7 @@
     python benchmarks/symbolic_lama.py                 # every IPC problem, one run each
     python benchmarks/symbolic_lama.py --rounds 3 --only depot-task03,sokoban-task23
     python benchmarks/symbolic_lama.py --evaluations   # CPU ms per evaluation, Python / compiled kernels
+    python benchmarks/symbolic_lama.py --split         # where our whole process's time goes, per row
 
 Each row runs ``pddl/activity_planning.py PROBLEM --domain DOMAIN --planner gbfs`` on new files (the task
 cache emptied first) and ``fast-downward.py --alias lama-first DOMAIN PROBLEM`` as fresh processes,
@@ -15,13 +16,19 @@ slower than lama-first, geometric mean at most 0.5x, every problem solved. ``ben
 ``--evaluations`` times instead, in this process, one ``LandmarkEvaluator`` evaluation (h_FF, helpful
 actions, h_LM and its preferred operators) in Python and through the compiled kernels, in CPU milliseconds
 on the 200 states of seeded random walks, beside each row's ``work_per_evaluation``.
+
+``--split`` runs our planner once per row in a fresh process (new files) and splits its CPU seconds into
+the interpreter's start, our imports, reading and grounding, and the search (with numpy and the compiled
+search when the search hands over to it).
 """
 
 from __future__ import annotations
 
 import argparse
 import random
+import shutil
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -31,7 +38,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from pddl_generators import IPC_DIR
 from symbolic import IPC_PROBLEMS
-from symbolic_process import _command, _run_once, fast_downward_script, geometric_mean
+from symbolic_process import (
+    _command,
+    _environment,
+    _run_once,
+    _task_cache,
+    fast_downward_script,
+    geometric_mean,
+)
 
 from kitchen_tamp.planning import load_task
 from kitchen_tamp.planning.heuristics import RelaxedExploration
@@ -108,6 +122,31 @@ def evaluation_costs(domain: Path, problem: Path) -> tuple[str, float]:
     return f"{evaluator.work_per_evaluation} | {milliseconds[0]:.3f} | {milliseconds[1]:.3f}", first
 
 
+SPLIT_SCRIPT = """
+import sys, time
+start = time.process_time()
+import kitchen_tamp.cli.activity_planning
+from kitchen_tamp.planning import load_task, plan
+imported = time.process_time()
+task = load_task(sys.argv[1], sys.argv[2])
+grounded = time.process_time()
+result = plan(task, "gbfs", time_budget=float(sys.argv[3]))
+searched = time.process_time()
+print(start, imported - start, grounded - imported, searched - grounded, result.expanded)
+"""
+"""Our planner's phases in one fresh process, in CPU seconds: the interpreter's start, our imports, reading
+and grounding, the search (with numpy and the compiled search when it hands over)."""
+
+
+def phase_split(domain: Path, problem: Path, workdir: Path, timeout: float) -> str:
+    """One fresh process of ours, new files: its phases' CPU seconds and their sum (table cells)."""
+    completed = subprocess.run([sys.executable, "-c", SPLIT_SCRIPT, str(problem), str(domain), str(timeout)],
+                               capture_output=True, text=True, cwd=workdir, timeout=timeout + 5,
+                               env=_environment(workdir), check=True)
+    phases = [float(value) for value in completed.stdout.split()[:4]]
+    return " | ".join(f"{value:.3f}" for value in [*phases, sum(phases)])
+
+
 def _cell(value: float | int | None) -> str:
     return "-" if value is None else f"{value:.3f}" if isinstance(value, float) else str(value)
 
@@ -117,6 +156,8 @@ def main() -> int:
     parser.add_argument("--only", help="comma-separated row names (domain-task) to run")
     parser.add_argument("--rounds", type=int, default=1, help="runs per planner and row (median)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
+    parser.add_argument("--split", action="store_true",
+                        help="where our whole process's CPU time goes (parse and ground, search, the rest)")
     parser.add_argument("--evaluations", action="store_true",
                         help="CPU ms per evaluation in Python and compiled, in-process, instead")
     args = parser.parse_args()
@@ -129,6 +170,14 @@ def main() -> int:
             loading = first if loading is None else loading
             print(f"| {row} | {cells} |", flush=True)
         print(f"\nthe first compiled evaluation (loading numba and the kernels): {loading:.3f} s CPU")
+        return 0
+    if args.split:
+        print("| problem | interpreter s | imports s | read and ground s | search s | sum s |\n"
+              "|---|---|---|---|---|---|")
+        with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
+            for row, domain, problem in _rows(only):
+                shutil.rmtree(_task_cache(Path(folder)), ignore_errors=True)
+                print(f"| {row} | {phase_split(domain, problem, Path(folder), args.timeout)} |", flush=True)
         return 0
     fd_script = fast_downward_script()
     if fd_script is None:

@@ -14,6 +14,7 @@ import pytest
 
 from kitchen_tamp.planning import landmark_count as landmark_count_module
 from kitchen_tamp.planning import load_task
+from kitchen_tamp.planning.heuristics import INFINITY
 from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
@@ -40,9 +41,10 @@ def kernel(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> s
 
 def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expansions: int = 20_000,
             **options: bool) -> SearchResult:
-    """gbfs with the evaluator's switch and the hand-over both after ``after_work`` (never: 10**18)."""
+    """gbfs with the evaluator's switch after ``after_work`` (never: 10**18), which hands the search over
+    (the hand-over by CPU time is off)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
-    monkeypatch.setattr(loading, "HANDOVER_AFTER_WORK", after_work)
+    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", INFINITY)
     return alternating_greedy_search(task, SearchBudget(None, expansions), **options)
 
 
@@ -112,3 +114,10 @@ def test_with_the_kernel_compiled_ahead_of_time_a_large_search_does_not_import_n
     if loading.ahead_of_time_kernel() is None:
         pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
     assert not _numba_imported_by_gbfs("sokoban", "task23.pddl")
+
+
+def test_the_hand_over_by_cpu_time_gives_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
+    task = _load("sokoban", "task23.pddl")
+    python = _search(task, 10**18, monkeypatch)
+    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.0)  # at the first evaluation after the root
+    assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)

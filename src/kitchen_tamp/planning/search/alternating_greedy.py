@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import time
 from typing import Generic, TypeVar
 
 from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
@@ -244,26 +245,24 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
 class _Handover:
     """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
 
-    Once the evaluations' Python work passes ``loading.HANDOVER_AFTER_WORK``, the kernel compiled ahead
-    of time is looked for; without it, the search goes over to numba's JIT kernel when the evaluator has
+    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, the kernel compiled ahead of
+    time is looked for; without it, the search goes over to numba's JIT kernel when the evaluator has
     switched to the JIT exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
-        self.after_work = float(loading.HANDOVER_AFTER_WORK)
+        self.due_at = time.process_time() + loading.HANDOVER_AFTER_SECONDS
         self.ahead_of_time_looked_for = False
 
     def due(self) -> bool:
-        evaluator = self.evaluator
-        return (evaluator.compiled is not None
-                or evaluator.evaluations * evaluator.work_per_evaluation > self.after_work)
+        return self.evaluator.compiled is not None or time.process_time() > self.due_at
 
     def search(self) -> SearchResult | None:
         """The compiled search's result, or None: no kernel yet (go on in Python)."""
         kernel = None
         if not self.ahead_of_time_looked_for and self.due():
             self.ahead_of_time_looked_for = True
-            self.after_work = INFINITY
+            self.due_at = INFINITY
             kernel = loading.ahead_of_time_kernel()
         if kernel is None and self.evaluator.compiled is not None:
             kernel = loading.jit_kernel()

@@ -25,10 +25,11 @@ from typing import Any
 SOLVED, UNSOLVABLE, OUT_OF_BUDGET = 0, 1, 2
 """The search's outcomes as the kernel returns them."""
 
-HANDOVER_AFTER_WORK = 1_000_000
-"""Evaluations times ``LandmarkEvaluator.work_per_evaluation`` after which the lazy greedy search hands over
-to the kernel compiled ahead of time: about the Python work that costs as much as importing numpy and laying
-out the arrays (a fifth of ``COMPILED_AFTER_WORK``, which pays for importing numba too)."""
+HANDOVER_AFTER_SECONDS = 0.15
+"""CPU seconds of the lazy greedy search in Python after which it hands over to the kernel compiled ahead of
+time: about what importing numpy and laying out the arrays cost (0.17-0.25 s, measured in docs/planner.md).
+A clock, not a count, decides here, and that keeps runs deterministic: the kernel takes the Python search's
+steps, so the plan and the counts do not depend on when the search hands over."""
 
 _HERE = Path(__file__).resolve().parent
 KERNEL_SOURCES = (_HERE / "greedy_kernel.py", _HERE.parent / "relaxed_kernel.py")
