@@ -27,6 +27,10 @@ A last table splits one run per problem into phases.
     python benchmarks/symbolic.py --process-only   # the whole-process table and its verdict only
     python benchmarks/symbolic.py --quick          # small problems only
     python benchmarks/symbolic.py --process-only --ipc   # the IPC set against lama-first and pyperplan
+    python benchmarks/symbolic.py --peers lama-first     # our gbfs against lama-first only, CPU seconds
+
+``--peers lama-first`` (with ``--evaluations`` or ``--split``) is ``symbolic_lama``'s table of our
+``gbfs`` against lama-first over the IPC set, whole processes in CPU seconds with the bar's verdict.
 """
 
 from __future__ import annotations
@@ -418,14 +422,26 @@ def main() -> int:
     parser.add_argument("--ipc", action="store_true", help="the IPC problems of benchmarks/ipc only")
     parser.add_argument("--process-only", action="store_true",
                         help="only the whole-process table (no in-process tables)")
-    parser.add_argument("--rounds", type=int, default=5,
-                        help="alternating fresh-process runs per row in the whole-process table")
+    parser.add_argument("--rounds", type=int, default=None,
+                        help="alternating fresh-process runs per row in the whole-process table "
+                             "(default 5; 1 with --peers lama-first)")
+    parser.add_argument("--peers", choices=("pyperplan-fd", "lama-first"), default="pyperplan-fd",
+                        help="pyperplan and Fast Downward on every pairing (default), or lama-first against "
+                             "our gbfs on the IPC set")
+    parser.add_argument("--evaluations", action="store_true",
+                        help="with --peers lama-first: CPU ms per evaluation, Python and compiled")
+    parser.add_argument("--split", action="store_true",
+                        help="with --peers lama-first: our fresh process's CPU seconds by phase")
     parser.add_argument("--pyperplan-worker", nargs=3, metavar=("DOMAIN", "PROBLEM", "SEARCH"),
                         help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.pyperplan_worker:
         pyperplan_worker(*args.pyperplan_worker)
         return 0
+    if args.peers == "lama-first":
+        from symbolic_lama import lama_first
+
+        return lama_first(args.only, args.rounds or 1, args.timeout, args.evaluations, args.split)
     logging.getLogger().setLevel(logging.WARNING)
     fd = None if args.no_fd else fast_downward_script()
     selected = [p for p in problems(args.quick) if (not args.only or p.name in args.only.split(","))
@@ -434,7 +450,7 @@ def main() -> int:
         rows = [(item.name, *_write_problem(item, Path(tmp)), item.searches) for item in selected]
         # One run first, so that byte code and our grammar cache are built (as after any first run).
         run_ours_once(rows[0][1], rows[0][2], "bfs", args.timeout)
-        process_table(rows, Path(tmp), fd, args.timeout, args.rounds)
+        process_table(rows, Path(tmp), fd, args.timeout, args.rounds or 5)
     if not args.process_only:
         in_process_table(selected, fd, args.timeout)
     return 0

@@ -1,14 +1,14 @@
-"""Our ``gbfs`` against Fast Downward's lama-first on the IPC set: whole processes, CPU seconds, one table.
+"""Our ``gbfs`` against Fast Downward's lama-first on the IPC set: ``symbolic.py --peers lama-first``.
 
-    python benchmarks/symbolic_lama.py                 # every IPC problem, one run each
-    python benchmarks/symbolic_lama.py --rounds 3 --only depot-task03,sokoban-task23
-    python benchmarks/symbolic_lama.py --evaluations   # CPU ms per evaluation, Python / compiled kernels
-    python benchmarks/symbolic_lama.py --split         # where our whole process's time goes, per row
+    python benchmarks/symbolic.py --peers lama-first          # every IPC problem, one run each
+    python benchmarks/symbolic.py --peers lama-first --rounds 3 --only depot-task03,sokoban-task23
+    python benchmarks/symbolic.py --peers lama-first --evaluations  # CPU ms per evaluation
+    python benchmarks/symbolic.py --peers lama-first --split  # our whole process's time by phase
 
 Each row runs ``pddl/activity_planning.py PROBLEM --domain DOMAIN --planner gbfs`` on new files (the task
 cache emptied first) and ``fast-downward.py --alias lama-first DOMAIN PROBLEM`` as fresh processes,
-alternating, and takes the median over ``--rounds`` of each one's CPU time (user + system of the process and
-its children, steadier than wall time on a shared machine). It prints the markdown table of
+alternating, and takes the median over ``--rounds`` (default 1) of each one's CPU time (user + system of the
+process and its children, steadier than wall time on a shared machine). It prints the markdown table of
 docs/planner.md's "Against lama-first on the IPC set" and the verdict against the bar: no row more than 2x
 slower than lama-first, geometric mean at most 0.5x, every problem solved. ``benchmarks/symbolic.py
 --process-only --ipc`` times the same rows as wall time with pyperplan beside them.
@@ -20,11 +20,12 @@ on the 200 states of seeded random walks, beside each row's ``work_per_evaluatio
 ``--split`` runs our planner once per row in a fresh process (new files) and splits its CPU seconds into
 the interpreter's start, our imports, reading and grounding, and the search (with numpy and the compiled
 search when the search hands over to it).
+
+This module is the lama-first part of ``symbolic.py``, which parses the options and calls ``lama_first``.
 """
 
 from __future__ import annotations
 
-import argparse
 import random
 import shutil
 import statistics
@@ -151,18 +152,10 @@ def _cell(value: float | int | None) -> str:
     return "-" if value is None else f"{value:.3f}" if isinstance(value, float) else str(value)
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--only", help="comma-separated row names (domain-task) to run")
-    parser.add_argument("--rounds", type=int, default=1, help="runs per planner and row (median)")
-    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner run")
-    parser.add_argument("--split", action="store_true",
-                        help="where our whole process's CPU time goes (parse and ground, search, the rest)")
-    parser.add_argument("--evaluations", action="store_true",
-                        help="CPU ms per evaluation in Python and compiled, in-process, instead")
-    args = parser.parse_args()
-    only = set(args.only.split(",")) if args.only else None
-    if args.evaluations:
+def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: bool, split: bool) -> int:
+    """``symbolic.py --peers lama-first``: the table against lama-first, ``--evaluations`` or ``--split``."""
+    only = set(only_rows.split(",")) if only_rows else None
+    if evaluations:
         print("| problem | work per evaluation | Python ms | compiled ms |\n|---|---|---|---|")
         loading = None
         for row, domain, problem in _rows(only):
@@ -171,13 +164,13 @@ def main() -> int:
             print(f"| {row} | {cells} |", flush=True)
         print(f"\nthe first compiled evaluation (loading numba and the kernels): {loading:.3f} s CPU")
         return 0
-    if args.split:
+    if split:
         print("| problem | interpreter s | imports s | read and ground s | search s | sum s |\n"
               "|---|---|---|---|---|---|")
         with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
             for row, domain, problem in _rows(only):
                 shutil.rmtree(_task_cache(Path(folder)), ignore_errors=True)
-                print(f"| {row} | {phase_split(domain, problem, Path(folder), args.timeout)} |", flush=True)
+                print(f"| {row} | {phase_split(domain, problem, Path(folder), timeout)} |", flush=True)
         return 0
     fd_script = fast_downward_script()
     if fd_script is None:
@@ -191,13 +184,13 @@ def main() -> int:
         workdir = Path(folder)
         for row, domain, problem in _rows(only):
             runs = {planner: _measure(_command(planner, "gbfs", domain, problem, workdir, fd_script,
-                                               args.timeout), planner, workdir, args.timeout, args.rounds)
+                                               timeout), planner, workdir, timeout, rounds)
                     for planner in ("first", "fd")}
             (ours, our_length, our_expanded), (fd, fd_length, fd_expanded) = runs["first"], runs["fd"]
             ratio = "-" if ours is None or fd is None else f"{ours / fd:.2f}"
             if ours is None:
                 unsolved.append(row)
-                ratio = f"unsolved in {args.timeout:g} s"
+                ratio = f"unsolved in {timeout:g} s"
             elif fd is not None:
                 ratios.append((row, ours / fd))
             print(f"| {row} | {_cell(ours)} | {_cell(fd)} | {ratio} "
@@ -212,7 +205,3 @@ def main() -> int:
           f"over {WORST_RATIO:g}x: {', '.join(over) or 'none'}; unsolved: {', '.join(unsolved) or 'none'}; "
           f"the bar is {'met' if met else 'not met'}")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
