@@ -10,14 +10,12 @@ served by a stale module. Loading it needs numpy only (about 0.2 s). Without
 it (a read-only install, an edited kernel before the next ``make install``)
 the search runs through numba's JIT kernel, the same code.
 
-This module imports neither numpy nor numba.
+This module imports neither numpy nor numba, and at load nothing beyond what the
+planner imports anyway (every ``gbfs`` run loads it).
 """
 
 from __future__ import annotations
 
-import hashlib
-import importlib.machinery
-import importlib.util
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -40,6 +38,8 @@ GreedyKernel = Callable[..., Any]
 
 def ahead_of_time_name() -> str:
     """The module name of the search compiled ahead of time from the current sources."""
+    import hashlib  # here, not at load: 8 ms of every run's start-up
+
     digest = hashlib.sha256()
     for source in KERNEL_SOURCES:
         digest.update(source.read_bytes())
@@ -52,6 +52,9 @@ def ahead_of_time_folder() -> Path:
 
 def ahead_of_time_kernel() -> GreedyKernel | None:
     """``lazy_greedy_search`` from the module compiled ahead of time; None without one for these sources."""
+    import importlib.machinery
+    import importlib.util
+
     name = ahead_of_time_name()
     for suffix in importlib.machinery.EXTENSION_SUFFIXES:
         path = ahead_of_time_folder() / (name + suffix)
