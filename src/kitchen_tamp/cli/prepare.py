@@ -60,7 +60,10 @@ def _compile_planning_kernels(task: Task) -> None:
     evaluator.compiled_after_work = -1  # through the kernels from the first state
     evaluator.root()
     compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
-    compile_ahead_of_time()  # with the signature of that run
+    try:
+        compile_ahead_of_time()  # with the signature of that run
+    except OSError as error:  # a read-only install: the search runs through the JIT kernel
+        print(f"the greedy search was not compiled ahead of time ({error}); it will use numba's JIT")
 
 
 def main() -> int:
