@@ -241,7 +241,6 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
                         budget.elapsed(), unsolvable_message(task, len(closed)))
 
 
-
 class _Handover:
     """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
 
@@ -271,4 +270,3 @@ class _Handover:
         from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy: large tasks
 
         return compiled_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, kernel)
-

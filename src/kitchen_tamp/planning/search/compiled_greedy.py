@@ -1,7 +1,7 @@
 """The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
 
-``alternating_greedy``'s lazy search hands a task over to this once it has done
-enough time in Python (``greedy_kernel_loading.HANDOVER_AFTER_SECONDS`` with the kernel compiled
+``alternating_greedy``'s lazy search hands a task over to this once it has spent
+long enough in Python (``greedy_kernel_loading.HANDOVER_AFTER_SECONDS`` with the kernel compiled
 ahead of time, else once its evaluator switches to the JIT kernels): the search then
 starts again from the root in the kernel, which takes the same steps as the
 Python search (the same queues, turns, ties, successor order and evaluations)
