@@ -62,8 +62,10 @@ def _compile_planning_kernels(task: Task) -> None:
     compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
     try:
         compile_ahead_of_time()  # with the signature of that run
-    except OSError as error:  # a read-only install: the search runs through the JIT kernel
-        print(f"the greedy search was not compiled ahead of time ({error}); it will use numba's JIT")
+    except Exception as error:  # e.g. a read-only install or no C compiler: the search uses the JIT kernel
+        reason = " ".join(str(error).split())
+        print(f"the greedy search was not compiled ahead of time ({type(error).__name__}: {reason}); "
+              "it will run through numba's JIT, the same code")
 
 
 def main() -> int:
