@@ -170,14 +170,15 @@ def _judge_physically(context: RunContext, pending: PendingPhysics) -> PhysicsOu
     return outcome
 
 
-def _draw_pictures(context: RunContext, timeline: Timeline) -> PendingPictures:
-    """Starts drawing replay.gif (without it, joints.png) from the judge's timeline on the second core."""
+def _start_pictures(context: RunContext) -> PendingPictures:
+    """Starts drawing replay.gif (without it, joints.png) on the second core: the child gets ready
+    while the judge reads the plan and draws once it is handed the judge's timeline."""
     run = context.run
     velocities = run.mode == "optimizes"
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles" + (
         " and velocities" if velocities else "")
     video = context.viewing.video
-    job = PictureJob(context.task, context.kitchen_map, timeline, context.out_dir, title, velocities,
+    job = PictureJob(context.task, context.kitchen_map, None, context.out_dir, title, velocities,
                      gif=video, joints=not video)
     return PendingPictures(job)
 
@@ -185,17 +186,18 @@ def _draw_pictures(context: RunContext, timeline: Timeline) -> PendingPictures:
 def judge_and_render(context: RunContext) -> int:
     """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code.
     Physics executes each step on the second core as soon as the kinematic judge has read it
-    (`background_physics`); the pictures of the timeline are drawn beside what follows the
-    judge (`background_pictures`)."""
+    (`background_physics`); the pictures of the judge's timeline are drawn beside what follows
+    the judge, by a child that got ready meanwhile (`background_pictures`)."""
     pictures: PendingPictures | None = None
     physics: PendingPhysics | None = None
     try:
         while True:
             physics = _start_physics(context)
-            verification, timeline = _judge_kinematically(context, physics)
             if pictures is not None:  # the file was re-planned: its pictures are drawn again
                 pictures.cancel()
-            pictures = _draw_pictures(context, timeline)
+            pictures = _start_pictures(context)
+            verification, timeline = _judge_kinematically(context, physics)
+            pictures.draw(timeline)
             outcome = None if physics is None else _judge_physically(context, physics)
             physics = None
             replan = None if outcome is None else outcome.execution.replan
@@ -236,7 +238,7 @@ def _render(
     if context.viewing.video:
         _write_html(context, timeline, rollout)
     if not pictures.job.joints:
-        joints, joints_s = pictures.job.draw_joints()
+        joints, joints_s = pictures.job.draw_joints(timeline)
         report.outputs["joints_plot"] = joints.name
     waited = time.perf_counter()
     drawn = pictures.result()

@@ -16,6 +16,7 @@ from __future__ import annotations
 import multiprocessing
 import multiprocessing.queues
 import pickle
+import queue
 import time
 import traceback
 from collections.abc import Iterator
@@ -25,6 +26,7 @@ from multiprocessing.connection import Connection
 from kitchen_tamp.execute.physics.execution import execute_under_physics
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
+from kitchen_tamp.execute.render.background_pictures import PARENT_CHECK_S
 from kitchen_tamp.execute.render.browser_replay import RecordedRollout, RolloutRecorder
 from kitchen_tamp.execute.verification import JudgedStep
 from kitchen_tamp.kitchen import KitchenMap
@@ -70,8 +72,20 @@ _END = None
 """Put on the queue after the last judged step."""
 
 
+def _next_queued(steps: multiprocessing.queues.Queue[bytes | None]) -> bytes | None:
+    """The next item on ``steps``; raises EOFError when the parent process is gone (the child
+    holds a copy of the queue's sending end, so it would wait for ever)."""
+    parent = multiprocessing.parent_process()
+    while True:
+        try:
+            return steps.get(timeout=PARENT_CHECK_S)
+        except queue.Empty:
+            if parent is not None and not parent.is_alive():
+                raise EOFError("the parent process ended") from None
+
+
 def _queued_steps(steps: multiprocessing.queues.Queue[bytes | None]) -> Iterator[JudgedStep]:
-    while (step := steps.get()) is not _END:
+    while (step := _next_queued(steps)) is not _END:
         yield pickle.loads(step)
 
 
