@@ -50,8 +50,8 @@ CASES = {
 }
 """Case -> mode and extra options of ``final_project.py``."""
 PHASES = ("startup_s", "symbolic_s", "refinement_s", "skills_s", "checkers_s", "motion_s", "judge_replay_s",
-          "verification_s", "physics_s", "rendering_s", "html_s", "pictures_wait_s", "gif_s", "joints_s",
-          "other_s", "total_s")
+          "verification_s", "physics_s", "physics_run_s", "rendering_s", "html_s", "pictures_wait_s", "gif_s",
+          "joints_s", "other_s", "total_s")
 PREPARE_MODULE = "kitchen_tamp.cli.prepare"
 PATH_KEYS = ("problem_path", "domain_path", "scene_path", "inputs")
 """Report keys that name where the checkout is, not what the run did."""

@@ -116,6 +116,24 @@ def test_pictures_drawn_beside_the_run_arrive(
 
 
 @pytest.mark.slow
+def test_pictures_started_before_the_timeline_is_known_draw_it_once_handed_over(
+    problem_timeline: tuple[Task, Timeline], tmp_path: Path
+) -> None:
+    task, timeline = problem_timeline
+    kitchen_map = choose_scene("problem.pddl").kitchen_map()
+    pending = PendingPictures(PictureJob(task, kitchen_map, None, tmp_path, "joints", gif=False))
+    time.sleep(0.5)  # the child gets ready meanwhile, as while the judge reads the plan
+    pending.draw(timeline)
+    pictures = pending.result()
+    assert pictures.joints == tmp_path / "joints.png" and pictures.gif is None
+    gif_job = PictureJob(task, kitchen_map, None, tmp_path / "gif", "joints", joints=False)
+    (tmp_path / "gif").mkdir()
+    pending = PendingPictures(gif_job)
+    pending.draw(timeline)
+    assert pending.result().frames == len(frame_times(timeline))
+
+
+@pytest.mark.slow
 def test_a_failure_in_the_drawing_process_comes_back_with_its_traceback(
     problem_timeline: tuple[Task, Timeline], tmp_path: Path
 ) -> None:

@@ -202,3 +202,22 @@ def test_along_agrees_with_reference(panda_scene: tuple[Scene, Robot]) -> None:
         assert valid[i] == expected_valid
         if i < 10:
             assert abs(clearance[i] - expected_clearance) < 1e-6
+
+
+
+def test_checkers_of_the_same_scene_share_one_pair_table(panda_scene: tuple[Scene, Robot]) -> None:
+    scene, robot = panda_scene
+    first, second = make_collision_checker(scene, robot), make_collision_checker(scene, robot)
+    assert first._checked is second._checked
+    touching = [AllowedContact("sugar", max_penetration=0.002)]
+    allowing = make_collision_checker(scene, robot, touching)
+    assert allowing._checked is not first._checked
+    assert allowing._checked is make_collision_checker(scene, robot, touching)._checked
+    box = _hold_sugar(scene, robot)
+    holding = make_collision_checker(scene, robot)
+    assert holding.carried and holding._checked is not first._checked
+    _assert_agrees(scene, robot, holding, _random_configurations(robot, 100, 4), ())
+    scene.detach(box)
+    again = make_collision_checker(scene, robot, touching)
+    assert again._checked is allowing._checked  # the sugar, now loose, is an obstacle again
+    _assert_agrees(scene, robot, again, _random_configurations(robot, 100, 5), touching)

@@ -27,17 +27,17 @@ from kitchen_tamp.execute import (
     Timeline,
     Verification,
     build_timeline,
-    judge_under_physics,
     verify_trajectory,
     write_trajectory,
 )
+from kitchen_tamp.execute.physics.background_physics import PendingPhysics, PhysicsJob, PhysicsOutcome
+from kitchen_tamp.execute.physics.execution import report_seconds
 from kitchen_tamp.execute.physics.replanning import Replanner
-from kitchen_tamp.execute.physics.verdict import PhysicsExecution
 from kitchen_tamp.execute.render.background_pictures import PendingPictures, PictureJob
 from kitchen_tamp.execute.render.browser_replay import (
     HTML_FILE,
     LiveViewer,
-    RolloutRecorder,
+    RecordedRollout,
     write_timeline_replay,
 )
 from kitchen_tamp.execute.run_inputs import RunInputs
@@ -107,16 +107,20 @@ def _play_in_window(kitchen: KitchenScene, timeline: Timeline, step: bool) -> No
         time.sleep(1.0 / 30.0)
 
 
-def _judge_kinematically(context: RunContext) -> tuple[Verification, Timeline]:
+def _judge_kinematically(
+    context: RunContext, physics: PendingPhysics | None
+) -> tuple[Verification, Timeline]:
+    """The kinematic judge's verdict and timeline; each step it reads goes to ``physics``."""
     clock = time.perf_counter()
     viewing, trajectory = context.viewing, context.run.trajectory
     wait = wait_for_enter if viewing.step and not viewing.gui else None
+    on_judged = None if physics is None else physics.judged
     with build_kitchen_for_task(context.task, gui=viewing.gui, kitchen_map=context.kitchen_map) as fresh:
         check_joint_count(context.run, fresh.robot.dof, context.trajectory_file)
         if viewing.meshcat and context.live is None:
             context.live = start_live_viewer(fresh)
         initial = fresh.scene.save_state()
-        verification = verify_trajectory(fresh, context.task, trajectory, on_step=wait)
+        verification = verify_trajectory(fresh, context.task, trajectory, on_step=wait, on_judged=on_judged)
         timeline = build_timeline(trajectory, verification.tracks)
         if viewing.gui:
             fresh.scene.restore_state(initial)
@@ -131,68 +135,86 @@ def _spliced(run: SavedRun, after: int, rest: KitchenTrajectory) -> SavedRun:
     return replace(run, trajectory=KitchenTrajectory(run.trajectory.steps[:after] + rest.steps))
 
 
-def _judge_physically(
-    context: RunContext, verification: Verification, rollout: RolloutRecorder | None
-) -> PhysicsExecution:
-    """Physics on the file; in a planning run, re-plans the rest where the scene drifts, writes
-    the spliced file and says so (the caller judges it again)."""
+def _start_physics(context: RunContext) -> PendingPhysics | None:
+    """Execution under physics started beside the kinematic judge (None with physics off)."""
+    if not context.viewing.physics:
+        return None
     replan = context.replan if len(context.replans) < MAX_REPLANS else None
-    execution = judge_under_physics(context.task, context.run.trajectory, verification, context.report,
-                                    context.kitchen_map, on_frame=rollout, replan=replan)
+    job = PhysicsJob(context.task, context.run.trajectory, context.kitchen_map, replan,
+                     record=context.viewing.video)
+    return PendingPhysics(job)
+
+
+def _judge_physically(context: RunContext, pending: PendingPhysics) -> PhysicsOutcome:
+    """Physics' verdict on the file (waiting for it); in a planning run, a re-plan where the scene
+    drifted is written into the file, saying so (the caller judges it again)."""
+    clock = time.perf_counter()
+    outcome = pending.result()
+    report, execution = context.report, outcome.execution
+    report.timing["physics_s"] = report_seconds(report, "physics_s") + time.perf_counter() - clock
+    report.timing["physics_run_s"] = report_seconds(report, "physics_run_s") + outcome.seconds
+    if not execution.verified and execution.replan is None:
+        report.fail("physics", "; ".join(execution.problems[:3]) or "the goal does not hold under physics")
     if execution.replan is not None:
         context.replans.append(execution.replan.data())
         if execution.replan.trajectory is None:
-            context.report.fail("physics", f"{execution.replan.reason}; no re-plan from the simulated scene")
+            report.fail("physics", f"{execution.replan.reason}; no re-plan from the simulated scene")
         else:
             context.run = _spliced(context.run, execution.replan.after, execution.replan.trajectory)
             write_trajectory(context.trajectory_file, context.run)
-            context.report.plan = context.run.trajectory.plan
+            report.plan = context.run.trajectory.plan
             say(f"physics: {execution.replan.reason}; re-planned the rest and wrote it into "
                 f"{context.trajectory_file.name}: judging the file again")
     execution.replans = list(context.replans)
-    context.report.physics = execution.report_data()
-    return execution
+    report.physics = execution.report_data()
+    return outcome
 
 
-def _draw_pictures(context: RunContext, timeline: Timeline) -> PendingPictures:
-    """Starts drawing replay.gif (without it, joints.png) from the judge's timeline on the second core."""
+def _start_pictures(context: RunContext) -> PendingPictures:
+    """Starts drawing replay.gif (without it, joints.png) on the second core: the child gets ready
+    while the judge reads the plan and draws once it is handed the judge's timeline."""
     run = context.run
     velocities = run.mode == "optimizes"
     title = f"{run.problem.name}, {run.mode}, seed {run.seed}: joint angles" + (
         " and velocities" if velocities else "")
     video = context.viewing.video
-    job = PictureJob(context.task, context.kitchen_map, timeline, context.out_dir, title, velocities,
+    job = PictureJob(context.task, context.kitchen_map, None, context.out_dir, title, velocities,
                      gif=video, joints=not video)
     return PendingPictures(job)
 
 
 def judge_and_render(context: RunContext) -> int:
     """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code.
-    The pictures of the timeline are drawn while physics judges (`background_pictures`)."""
+    Physics executes each step on the second core as soon as the kinematic judge has read it
+    (`background_physics`); the pictures of the judge's timeline are drawn beside what follows
+    the judge, by a child that got ready meanwhile (`background_pictures`)."""
     pictures: PendingPictures | None = None
+    physics: PendingPhysics | None = None
     try:
         while True:
-            verification, timeline = _judge_kinematically(context)
+            physics = _start_physics(context)
             if pictures is not None:  # the file was re-planned: its pictures are drawn again
                 pictures.cancel()
-            pictures = _draw_pictures(context, timeline)
-            rollout = RolloutRecorder() if context.viewing.video else None
+            pictures = _start_pictures(context)
+            verification, timeline = _judge_kinematically(context, physics)
+            pictures.draw(timeline)
+            outcome = None if physics is None else _judge_physically(context, physics)
             physics = None
-            if context.viewing.physics:
-                physics = _judge_physically(context, verification, rollout)
-            if physics is None or physics.replan is None or physics.replan.trajectory is None:
+            replan = None if outcome is None else outcome.execution.replan
+            if replan is None or replan.trajectory is None:
                 break
         if not verification.verified:
             context.report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
-        _render(context, timeline, rollout, pictures)
+        _render(context, timeline, None if outcome is None else outcome.recorded, pictures)
     except BaseException:
-        if pictures is not None:
-            pictures.cancel()
+        for pending in (pictures, physics):
+            if pending is not None:
+                pending.cancel()
         raise
     return finish(context.report, context.out_dir, context.inputs, context.report_name)
 
 
-def _write_html(context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None) -> None:
+def _write_html(context: RunContext, timeline: Timeline, rollout: RecordedRollout | None) -> None:
     clock = time.perf_counter()
     report, path = context.report, context.out_dir / HTML_FILE
     if rollout is not None and rollout.captured:  # the motion the simulator executed
@@ -206,7 +228,7 @@ def _write_html(context: RunContext, timeline: Timeline, rollout: RolloutRecorde
 
 
 def _render(
-    context: RunContext, timeline: Timeline, rollout: RolloutRecorder | None, pictures: PendingPictures
+    context: RunContext, timeline: Timeline, rollout: RecordedRollout | None, pictures: PendingPictures
 ) -> None:
     clock = time.perf_counter()
     report = context.report
@@ -216,7 +238,7 @@ def _render(
     if context.viewing.video:
         _write_html(context, timeline, rollout)
     if not pictures.job.joints:
-        joints, joints_s = pictures.job.draw_joints()
+        joints, joints_s = pictures.job.draw_joints(timeline)
         report.outputs["joints_plot"] = joints.name
     waited = time.perf_counter()
     drawn = pictures.result()

@@ -21,7 +21,8 @@ included) to the report; ``total_s`` is their sum plus ``other_s`` (writing traj
 verdict line, re-judging after a re-plan). Others are parts of these (``skills_s``, ``motion_s``,
 ``judge_replay_s``, ``checkers_s`` of ``refinement_s``; ``html_s``, ``joints_s``,
 ``pictures_wait_s`` of ``rendering_s``) or ran beside them in a second process (``gif_s``;
-``joints_s`` without a GIF)."""
+``joints_s`` without a GIF; ``physics_run_s``, physics executing beside the kinematic judge, of
+which ``physics_s`` is only what the main process waited for it after the judge)."""
 
 
 @dataclass

@@ -29,7 +29,7 @@ the scene after the step (``StepOutcome``).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
@@ -59,6 +59,16 @@ class StepOutcome:
     box_poses: Mapping[str, Pose]
     held_box: str | None
     openings: Mapping[str, float]
+
+    def __reduce__(self) -> tuple[object, ...]:
+        """Pickles with plain dicts (a mapping proxy does not pickle), read-only again when loaded."""
+        return _loaded_outcome, (self.arguments, dict(self.box_poses), self.held_box, dict(self.openings))
+
+
+def _loaded_outcome(
+    arguments: tuple[str, ...], box_poses: dict[str, Pose], held_box: str | None, openings: dict[str, float]
+) -> StepOutcome:
+    return StepOutcome(arguments, MappingProxyType(box_poses), held_box, MappingProxyType(openings))
 
 
 def step_outcome(kitchen: KitchenScene, arguments: tuple[str, ...]) -> StepOutcome:
@@ -134,17 +144,29 @@ def parse_action(task: Task, text: str) -> GroundAction | None:
     return task.action_named(words[0], words[1:]) if words else None
 
 
+JudgedStep = tuple[tuple[SegmentTrack, ...], StepOutcome]
+"""One step as the judge read it: its replayed tracks and the scene after it."""
+
+
+def judged_steps(verification: Verification) -> Iterator[JudgedStep]:
+    """The steps of a finished verification, in order, as ``JudgedStep``s."""
+    return zip(verification.tracks, verification.outcomes, strict=True)
+
+
 def verify_trajectory(
     kitchen: KitchenScene,
     task: Task,
     trajectory: KitchenTrajectory,
     resolution: float = JUDGE_RESOLUTION_RAD,
     on_step: Callable[[int, str], None] | None = None,
+    on_judged: Callable[[JudgedStep], None] | None = None,
 ) -> Verification:
     """Replay ``trajectory`` in ``kitchen`` (freshly built for ``task``) and check it.
 
     The scene is left in the final state. ``on_step(index, action)`` is called
-    before each action (e.g. to wait for Enter).
+    before each action (e.g. to wait for Enter), ``on_judged(step)`` once the
+    action's tracks and the scene after it are known (e.g. to execute it under
+    physics meanwhile).
     """
     result = Verification(resolution_rad=resolution)
     state = task.initial_state
@@ -168,6 +190,8 @@ def verify_trajectory(
         replay = replay_action(kitchen, label, args, step.segments, resolution, measure=True)
         result.tracks.append(tuple(replay.tracks))
         result.outcomes.append(step_outcome(kitchen, tuple(args)))
+        if on_judged is not None:
+            on_judged((result.tracks[-1], result.outcomes[-1]))
         result.problems += replay.problems
         result.configurations_checked += replay.configurations_checked
         result.collision_free &= replay.collision_free

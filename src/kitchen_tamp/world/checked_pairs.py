@@ -238,3 +238,30 @@ class CheckedPairs:
         near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
         near = near[np.argsort(gaps[near], kind="stable")]
         return list(zip(near.tolist(), gaps[near].tolist(), strict=True))
+
+
+
+_MADE_TABLES: dict[tuple[object, ...], CheckedPairs] = {}
+"""Tables made by `checked_pairs_of`, by what they were made of (at most `_MAX_MADE_TABLES`)."""
+_MAX_MADE_TABLES: Final = 64
+
+
+def checked_pairs_of(
+    robot: Robot,
+    obstacles: Sequence[Body],
+    carried: Sequence[Attachment],
+    allowed: Sequence[AllowedContact] = (),
+    riding: Sequence[Attachment] = (),
+) -> CheckedPairs:
+    """``CheckedPairs(robot, obstacles, carried, allowed, riding)``, made once for the same bodies,
+    contacts and rides: a table reads of an attachment only which bodies and link it joins, and
+    nothing of it changes once made, while the skills and the judges make a checker per sample
+    and per run of states, mostly of the same scene."""
+    key = (robot, tuple(obstacles), tuple(a.child for a in carried), tuple(allowed),
+           tuple((r.parent, r.parent_link, r.child) for r in riding))
+    table = _MADE_TABLES.get(key)
+    if table is None:
+        if len(_MADE_TABLES) >= _MAX_MADE_TABLES:
+            _MADE_TABLES.pop(next(iter(_MADE_TABLES)))
+        table = _MADE_TABLES[key] = CheckedPairs(robot, obstacles, carried, allowed, riding)
+    return table

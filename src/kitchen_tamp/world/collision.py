@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from kitchen_tamp.joint_spacing import interior_fractions
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body
-from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedLinkPair, CheckedPairs
+from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedLinkPair, CheckedPairs, checked_pairs_of
 from kitchen_tamp.world.checked_pairs import AllowedContact as AllowedContact
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
@@ -129,7 +129,7 @@ class PyBulletCollisionChecker:
         self._robot_slot = self._bodies.index(robot.body)
         self._arm_in_robot_state = [self._joints[self._robot_slot].index(i) for i in self._arm]
         self._carried_slots = tuple(self._bodies.index(a.child) for a in self.carried)
-        self._checked = CheckedPairs(robot, self.obstacles, self.carried, self.allowed)
+        self._checked = checked_pairs_of(robot, self.obstacles, self.carried, self.allowed)
         self._pairs = self._checked.pairs
         self._static_bounds = self._checked.static_bounds()
         riding = tuple(
@@ -137,7 +137,7 @@ class PyBulletCollisionChecker:
         )
         self._checked_along = self._checked
         if riding:
-            self._checked_along = CheckedPairs(robot, self.obstacles, self.carried, self.allowed, riding)
+            self._checked_along = checked_pairs_of(robot, self.obstacles, self.carried, self.allowed, riding)
 
     def policy(self) -> tuple[CheckedLinkPair, ...]:
         """The pairs this checker checks with the arm alone moving, as plain data."""

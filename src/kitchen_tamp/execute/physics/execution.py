@@ -27,6 +27,7 @@ and judges the file again (``kitchen_tamp.execute.judging``).
 from __future__ import annotations
 
 import time
+from collections.abc import Iterable
 
 from kitchen_tamp.execute.atom_comparison import atoms_text, goal_literals
 from kitchen_tamp.execute.physics.replanning import ArmState, Replanner, replan_rest
@@ -38,7 +39,7 @@ from kitchen_tamp.execute.physics.verdict import (
     Replan,
 )
 from kitchen_tamp.execute.run_report import RunReport
-from kitchen_tamp.execute.verification import Verification, parse_action
+from kitchen_tamp.execute.verification import JudgedStep, Verification, judged_steps, parse_action
 from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_task, record_conditions
 from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
@@ -49,20 +50,22 @@ from kitchen_tamp.world.physics import PhysicsWorld
 def execute_under_physics(
     task: Task,
     trajectory: KitchenTrajectory,
-    judged: Verification,
+    judged: Verification | Iterable[JudgedStep],
     kitchen_map: KitchenMap | None = None,
     configuration: PhysicsConfiguration = DEFAULT_CONFIGURATION,
     on_frame: FrameCallback | None = None,
     replan: Replanner | None = None,
 ) -> PhysicsExecution:
     """Run ``trajectory`` (as the kinematic judge read it: ``judged``) in a fresh simulated
-    kitchen for ``task`` and judge it.
+    kitchen for ``task`` and judge it. ``judged`` may also be the judge's steps as they come
+    (`verify_trajectory`'s ``on_judged``): each is taken only when its action is executed.
 
     With ``replan``, a scene that has drifted beyond tolerance after an action (Ψ still as
     planned, hand empty, actions left) stops the execution with ``replan``'s refinement of
     the rest of the plan from the scene as it is (``PhysicsExecution.replan``)."""
     result = PhysicsExecution(configuration)
     steps = trajectory.steps
+    judged_in_order = judged_steps(judged) if isinstance(judged, Verification) else judged
     with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
         world = PhysicsWorld(
             kitchen.scene, kitchen.robot, [kitchen.kitchen], list(kitchen.boxes.values()),
@@ -71,9 +74,7 @@ def execute_under_physics(
         rollout = Rollout(kitchen, world, result, dict(task.objects), on_frame)
         rollout.settle()
         state = task.initial_state
-        for index, (step, tracks, outcome) in enumerate(
-            zip(steps, judged.tracks, judged.outcomes, strict=True)
-        ):
+        for index, (step, (tracks, outcome)) in enumerate(zip(steps, judged_in_order, strict=True)):
             figures = rollout.run_action(index, step, tracks, outcome)
             action = parse_action(task, step.action)
             if action is not None and action.applicable(state):

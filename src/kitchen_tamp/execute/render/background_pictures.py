@@ -2,11 +2,13 @@
 
 Both pictures need only the kinematic judge's timeline, so once the judge has
 given it, a forked child process draws the GIF (building its own kitchen), while
-the parent executes the run under physics and writes replay.html and joints.png:
-that splits the work about evenly. Without a GIF, the child draws joints.png
-while the parent runs physics.
-The child inherits what it needs (the task, the kitchen map, the timeline) by
-the fork and sends back what it wrote, or the traceback of what went wrong.
+the parent waits for physics and writes replay.html and joints.png: that splits
+the work about evenly. Without a GIF, the child draws joints.png.
+The child inherits what it needs (the task, the kitchen map and, if known, the
+timeline) by the fork and sends back what it wrote, or the traceback of what went
+wrong. A job without a timeline starts the child at once: it loads matplotlib (when
+it plots) and builds its kitchen (when it draws the GIF) while the judge reads the
+plan, then waits for the timeline (`PendingPictures.draw`).
 Where processes cannot be forked, the pictures are drawn in this process when
 their result is asked for.
 """
@@ -16,11 +18,13 @@ from __future__ import annotations
 import multiprocessing
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from multiprocessing.connection import Connection
 from pathlib import Path
 
-from kitchen_tamp.execute.render.joint_plot import plot_joints
+from kitchen_tamp.execute.render.joint_plot import load_plotting, plot_joints
 from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, render_replay, write_gif
 from kitchen_tamp.execute.timeline import Timeline
 from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
@@ -28,6 +32,8 @@ from kitchen_tamp.planning import Task
 
 GIF_FILE = "replay.gif"
 JOINTS_FILE = "joints.png"
+PARENT_CHECK_S = 1.0
+"""How often (s) a child waiting for its parent checks that the parent still runs."""
 
 
 class PictureError(RuntimeError):
@@ -52,7 +58,8 @@ class PictureJob:
 
     task: Task
     kitchen_map: KitchenMap
-    timeline: Timeline
+    timeline: Timeline | None
+    """The judge's timeline, or None when it is handed over later (`PendingPictures.draw`)."""
     out_dir: Path
     joints_title: str
     velocities: bool = False
@@ -62,26 +69,53 @@ class PictureJob:
     joints: bool = True
     """Plot ``joints.png`` (else whoever holds the job does, with `draw_joints`)."""
 
-    def draw_joints(self) -> tuple[Path, float]:
-        """Plots ``joints.png``: its path and the seconds it took."""
+    def draw_joints(self, timeline: Timeline | None = None) -> tuple[Path, float]:
+        """Plots ``joints.png`` (of ``timeline``, else the job's): its path and the seconds it took."""
         clock = time.perf_counter()
-        path = plot_joints(self.timeline, self.joints_title, self.out_dir / JOINTS_FILE, self.velocities)
+        timeline = timeline or self.timeline
+        if timeline is None:
+            raise ValueError("no timeline to plot")
+        path = plot_joints(timeline, self.joints_title, self.out_dir / JOINTS_FILE, self.velocities)
         return path, time.perf_counter() - clock
 
-    def run(self) -> Pictures:
-        joints, joints_s = self.draw_joints() if self.joints else (None, 0.0)
+    def run(self, timeline_of: Callable[[], Timeline] | None = None) -> Pictures:
+        """Draws the pictures of the job's timeline, else of ``timeline_of()``, asked for once
+        what can be done without it is done."""
+        if self.joints:
+            load_plotting()
+
+        def timeline() -> Timeline:
+            if self.timeline is not None:
+                return self.timeline
+            if timeline_of is None:
+                raise ValueError("no timeline to draw")
+            return timeline_of()
+
         if not self.gif:
-            return Pictures(joints, joints_s)
-        clock = time.perf_counter()
+            return Pictures(*self.draw_joints(timeline()))
         with build_kitchen_for_task(self.task, kitchen_map=self.kitchen_map) as kitchen:
-            images = render_replay(kitchen, self.timeline)
+            drawn = timeline()
+            joints, joints_s = self.draw_joints(drawn) if self.joints else (None, 0.0)
+            clock = time.perf_counter()
+            images = render_replay(kitchen, drawn)
         gif = write_gif(self.out_dir / GIF_FILE, images, FRAME_SECONDS) if images else None
         return Pictures(joints, joints_s, gif, len(images), time.perf_counter() - clock)
 
 
-def _draw_in_child(job: PictureJob, sender: Connection) -> None:
+def _received(connection: Connection) -> object:
+    """The next object sent on ``connection``; raises EOFError when the parent process is gone
+    (the child holds a copy of the sending end, so it would never see the end of the pipe)."""
+    parent = multiprocessing.parent_process()
+    while not connection.poll(PARENT_CHECK_S):
+        if parent is not None and not parent.is_alive():
+            raise EOFError("the parent process ended")
+    return connection.recv()
+
+
+def _draw_in_child(job: PictureJob, timelines: Connection | None, sender: Connection) -> None:
     try:
-        sender.send(job.run())
+        timeline_of = None if timelines is None else partial(_received, timelines)
+        sender.send(job.run(timeline_of))  # type: ignore[arg-type]
     except BaseException:  # whatever it was, the parent reports it
         sender.send(traceback.format_exc())
     finally:
@@ -95,17 +129,37 @@ class PendingPictures:
         self.job = job
         self._process: multiprocessing.process.BaseProcess | None = None
         self._receiver: Connection | None = None
+        self._timeline_sender: Connection | None = None
+        self._timeline: Timeline | None = job.timeline
         if "fork" in multiprocessing.get_all_start_methods():
             context = multiprocessing.get_context("fork")
             self._receiver, sender = context.Pipe(duplex=False)
-            self._process = context.Process(target=_draw_in_child, args=(job, sender), daemon=True)
+            timelines = None
+            if job.timeline is None:
+                timelines, self._timeline_sender = context.Pipe(duplex=False)
+            self._process = context.Process(target=_draw_in_child, args=(job, timelines, sender), daemon=True)
             self._process.start()
             sender.close()
+            if timelines is not None:
+                timelines.close()
+
+    def draw(self, timeline: Timeline) -> None:
+        """Hands over the timeline of a job made without one."""
+        self._timeline = timeline
+        if self._timeline_sender is not None:
+            self._timeline_sender.send(timeline)
+            self._timeline_sender.close()
+            self._timeline_sender = None
+
+    def _timeline_here(self) -> Timeline:
+        if self._timeline is None:
+            raise ValueError("no timeline was handed over")
+        return self._timeline
 
     def result(self) -> Pictures:
         """Waits for the pictures; raises `PictureError` with the child's traceback if it failed."""
         if self._process is None or self._receiver is None:
-            return self.job.run()
+            return self.job.run(self._timeline_here)
         try:
             outcome = self._receiver.recv()
         except EOFError:
@@ -125,6 +179,7 @@ class PendingPictures:
             self._process.join()
             for unfinished in self.job.out_dir.glob(f".*.{self._process.pid}.*.tmp"):
                 unfinished.unlink(missing_ok=True)
-        if self._receiver is not None:
-            self._receiver.close()
-        self._process = self._receiver = None
+        for connection in (self._receiver, self._timeline_sender):
+            if connection is not None:
+                connection.close()
+        self._process = self._receiver = self._timeline_sender = None

@@ -13,6 +13,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -215,6 +216,27 @@ def write_timeline_replay(
     return write_browser_replay(recording, path, overview_camera(kitchen))
 
 
+@dataclass(frozen=True, eq=False)
+class RecordedRollout:
+    """What a `RolloutRecorder` recorded, without the scene it recorded (so that it can be sent
+    from the process that ran physics to the one that writes the page)."""
+
+    recording: SceneRecording
+    camera: CameraView | None
+
+    @property
+    def captured(self) -> bool:
+        """Whether at least two frames were recorded."""
+        return len(self.recording.times) >= 2
+
+    def write(self, path: Path, live: LiveViewer | None = None) -> Path:
+        """``replay.html`` of what was recorded (thinned to ``MAX_FRAMES``); ``live`` gets it too."""
+        recording = self.recording.thinned(MAX_FRAMES)
+        if live is not None:
+            live.play(recording)
+        return write_browser_replay(recording, path, self.camera)
+
+
 class RolloutRecorder:
     """An ``on_frame(time_s, kitchen)`` callback for a physics rollout: records the kitchen it is
     shown (the simulator's own), so that ``replay.html`` shows the physical motion."""
@@ -229,19 +251,24 @@ class RolloutRecorder:
             self._camera = overview_camera(kitchen)
         self._recorder.capture(time_s)
 
+    def recorded(self) -> RecordedRollout | None:
+        """What was recorded (None before the first frame)."""
+        if self._recorder is None:
+            return None
+        return RecordedRollout(self._recorder.recording(), self._camera)
+
     @property
     def captured(self) -> bool:
         """Whether at least two frames were recorded."""
-        return self._recorder is not None and len(self._recorder.recording().times) >= 2
+        recorded = self.recorded()
+        return recorded is not None and recorded.captured
 
     def write(self, path: Path, live: LiveViewer | None = None) -> Path:
         """``replay.html`` of what was recorded (thinned to ``MAX_FRAMES``); ``live`` gets it too."""
-        if self._recorder is None:
+        recorded = self.recorded()
+        if recorded is None:
             raise ValueError("no frame of the rollout was recorded")
-        recording = self._recorder.recording().thinned(MAX_FRAMES)
-        if live is not None:
-            live.play(recording)
-        return write_browser_replay(recording, path, self._camera)
+        return recorded.write(path, live)
 
 
 class LiveViewer:

@@ -6,6 +6,7 @@ the package is: a run's start-up does not wait for it.
 
 from __future__ import annotations
 
+import importlib
 import io
 from pathlib import Path
 
@@ -13,6 +14,12 @@ import numpy as np
 
 from kitchen_tamp.atomic_files import write_atomically
 from kitchen_tamp.execute.timeline import Timeline
+
+
+def load_plotting() -> None:
+    """Imports what `plot_joints` draws with (a second or so), e.g. in a process that has time now."""
+    importlib.import_module("matplotlib.backends.backend_agg")
+    importlib.import_module("matplotlib.figure")
 
 
 def plot_joints(timeline: Timeline, title: str, path: Path, show_velocities: bool = False) -> Path:
