@@ -21,7 +21,7 @@ from kitchen_tamp.motion.planning_result import (
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
 from kitchen_tamp.motion.sampling.rrt import steer
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
+from kitchen_tamp.motion.segment_checking import CompiledValidity, CountingSegmentChecker
 
 
 @dataclass(frozen=True)
@@ -117,7 +117,9 @@ def plan_rrt_connect(
 ) -> PlanningResult:
     """Bidirectional RRT: extend one tree toward a sample, connect the other to the new node.
 
-    Raises `InvalidMotionQueryError` for a malformed or out-of-bounds
+    With the sphere model as the checker (a `CompiledValidity` that answers), the loop runs
+    compiled (`compiled_rrt_connect`): the same search from the same samples, without Python
+    between the segment checks. Raises `InvalidMotionQueryError` for a malformed or out-of-bounds
     start/goal; a start or goal in collision is reported by the result's status.
     """
     params = hyperparameters or RrtConnectHyperparameters()
@@ -146,6 +148,22 @@ def plan_rrt_connect(
     if segments.segment_valid(q_start, q_goal, check_start=False, check_end=False):
         return finish(PlanStatus.SOLVED, 0, np.stack([q_start, q_goal]))
 
+    compiled = checker.compiled_validity() if isinstance(checker, CompiledValidity) else None
+    if compiled is not None:
+        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
+
+        settings = LoopSettings(
+            params.step_size, params.edge_resolution, params.max_iterations, deadline, clock
+        )
+        outcome = run_compiled_loop(q_start, q_goal, samples, compiled, settings)
+        return PlanningResult(
+            status=outcome.status,
+            path=outcome.path,
+            iterations=outcome.iterations,
+            nodes=outcome.nodes,
+            collision_checks=segments.configurations_checked + outcome.collision_checks,
+            planning_time_s=clock() - clock_start,
+        )
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
         if clock() >= deadline:
