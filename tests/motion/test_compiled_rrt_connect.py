@@ -71,13 +71,16 @@ def test_the_sphere_model_offers_its_compiled_validity(table: Any) -> None:
     assert not isinstance(PythonLoopSpheres(spheres), CompiledValidity)
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2])
-def test_the_compiled_loop_searches_as_the_python_loop_does(table: Any, seed: int) -> None:
+@pytest.mark.parametrize(("seed", "tree_balance"), [(0, 0.0), (1, 0.0), (2, 0.0), (0, 1.5), (1, 1.5)])
+def test_the_compiled_loop_searches_as_the_python_loop_does(
+    table: Any, seed: int, tree_balance: float
+) -> None:
     problem, spheres, _ = table
     start, goal = problem.start, problem.goals[0]
-    compiled = plan_rrt_connect(start, goal, SPACE, spheres, seed=seed, time_budget_s=math.inf)
+    search = RrtConnectHyperparameters(tree_balance=tree_balance)
+    compiled = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=seed, time_budget_s=math.inf)
     python = plan_rrt_connect(
-        start, goal, SPACE, PythonLoopSpheres(spheres), seed=seed, time_budget_s=math.inf
+        start, goal, SPACE, PythonLoopSpheres(spheres), search, seed=seed, time_budget_s=math.inf
     )
     assert compiled.status is PlanStatus.SOLVED and compiled.iterations > 0
     assert (compiled.iterations, compiled.nodes) == (python.iterations, python.nodes)

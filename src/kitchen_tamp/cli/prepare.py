@@ -60,7 +60,7 @@ def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray
     from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
 
     samples = UniformSamples(ConfigurationSpace(checker.lower, checker.upper), np.random.default_rng(0))
-    settings = LoopSettings(1.0, 0.01, 1, math.inf, time.perf_counter)
+    settings = LoopSettings(1.0, 0.01, 1, 0.0, math.inf, time.perf_counter)
     run_compiled_loop(home, home, samples, checker.compiled_validity(), settings)
 
 

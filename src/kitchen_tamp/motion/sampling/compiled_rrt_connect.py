@@ -3,8 +3,7 @@
 Each call runs the iterations of one block of samples (or fewer, when the trees need room);
 between calls the clock is read and the tree arrays grown, so the time budget is kept to within
 one block of iterations. Used by `plan_rrt_connect` when the checker is the sphere model
-(`CompiledValidity`); its answer, the trees joined or the reason they were not, is turned into
-a `PlanningResult` there.
+(`CompiledValidity`).
 """
 
 from __future__ import annotations
@@ -19,7 +18,7 @@ import numpy as np
 from kitchen_tamp.motion.collision_checker import JointConfiguration
 from kitchen_tamp.motion.configuration_space import UniformSamples
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.planning_result import PlanStatus
+from kitchen_tamp.motion.planning_result import PlanningResult, PlanStatus
 from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
 from kitchen_tamp.motion.sampling.rrt_connect_kernel import (
     COUNTER_CHECKS,
@@ -44,6 +43,7 @@ class LoopSettings:
     step_size: float
     resolution: float
     max_iterations: int
+    tree_balance: float
     deadline: float
     clock: Callable[[], float]
 
@@ -57,6 +57,17 @@ class LoopOutcome:
     iterations: int
     nodes: int
     collision_checks: int
+
+    def result(self, checked_before: int, planning_time_s: float) -> PlanningResult:
+        """The planner's answer, counting ``checked_before`` configurations checked before the loop."""
+        return PlanningResult(
+            status=self.status,
+            path=self.path,
+            iterations=self.iterations,
+            nodes=self.nodes,
+            collision_checks=checked_before + self.collision_checks,
+            planning_time_s=planning_time_s,
+        )
 
 
 class _Trees:
@@ -136,6 +147,7 @@ def run_compiled_loop(
             counters,
             arrays,
             margin,
+            settings.tree_balance,
         )
         samples.skip(int(used))
         if counters[COUNTER_JOINED]:

@@ -31,6 +31,10 @@ class RrtConnectHyperparameters:
     step_size: float = 1.0
     edge_resolution: float = PLANNING_RESOLUTION_RAD
     max_iterations: int = 10_000
+    tree_balance: float = 0.0
+    """0: the trees take turns. Positive (at least 1): after an iteration the other tree grows next
+    unless it holds more than ``tree_balance`` times this tree's nodes, then this one grows again
+    (a tree trapped near its end by a narrow passage is grown until it is out)."""
     clock: Callable[[], float] = time.perf_counter
     """What the time budget is measured on: wall seconds; ``time.process_time`` for CPU seconds."""
 
@@ -41,6 +45,8 @@ class RrtConnectHyperparameters:
             raise ValueError(f"edge_resolution must be positive, got {self.edge_resolution}")
         if self.max_iterations < 1:
             raise ValueError(f"max_iterations must be at least 1, got {self.max_iterations}")
+        if self.tree_balance != 0.0 and not self.tree_balance >= 1.0:
+            raise ValueError(f"tree_balance must be 0 or at least 1, got {self.tree_balance}")
 
 
 def extend_tree(
@@ -153,17 +159,15 @@ def plan_rrt_connect(
         from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
 
         settings = LoopSettings(
-            params.step_size, params.edge_resolution, params.max_iterations, deadline, clock
+            params.step_size,
+            params.edge_resolution,
+            params.max_iterations,
+            params.tree_balance,
+            deadline,
+            clock,
         )
         outcome = run_compiled_loop(q_start, q_goal, samples, compiled, settings)
-        return PlanningResult(
-            status=outcome.status,
-            path=outcome.path,
-            iterations=outcome.iterations,
-            nodes=outcome.nodes,
-            collision_checks=segments.configurations_checked + outcome.collision_checks,
-            planning_time_s=clock() - clock_start,
-        )
+        return outcome.result(segments.configurations_checked, clock() - clock_start)
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
         if clock() >= deadline:
@@ -179,4 +183,6 @@ def plan_rrt_connect(
                     path = _joined_path(start_tree, end, goal_tree, new)
                 return finish(PlanStatus.SOLVED, iteration, path)
         growing, other = other, growing
+        if params.tree_balance and len(growing) > params.tree_balance * len(other):
+            growing, other = other, growing
     return finish(PlanStatus.ITERATION_LIMIT, params.max_iterations)

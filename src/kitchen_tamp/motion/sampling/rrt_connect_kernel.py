@@ -174,10 +174,12 @@ def rrt_connect_iterations(
     counters: IntArray,
     arrays: ValidityArrays,
     margin: float,
+    tree_balance: float,
 ) -> int:
     """Run iterations on the trees, one per row of ``samples`` (the samples used), stopping early
     when the trees are joined, at ``max_iterations``, or when either tree has fewer than
-    ``room_per_iteration`` free rows left."""
+    ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
+    ``tree_balance`` a tree more than that many times the other's size waits its turn."""
     capacity = nodes.shape[1]
     used = 0
     for row in range(samples.shape[0]):
@@ -212,5 +214,10 @@ def rrt_connect_iterations(
                 counters[COUNTER_JOINED + 1 + growing] = new
                 counters[COUNTER_JOINED + 1 + other] = end
                 break
+        if (
+            tree_balance > 0.0
+            and counters[COUNTER_SIZES + other] > tree_balance * counters[COUNTER_SIZES + growing]
+        ):
+            other = growing  # the other tree is the larger by more than the balance: grow this one again
         counters[COUNTER_GROWING] = other
     return used
