@@ -56,8 +56,9 @@ resources/README.md, "MotionBenchMaker Reference Timings", Panda, AMD Ryzen 9 79
 MBM_SEARCH = RrtConnectHyperparameters(tree_balance=1.5, max_iterations=10**9)
 """Our RRT-Connect on these problems: a tree more than 1.5 times the other's size waits its turn (the
 kitchen's planner alternates), bounded by the budget alone (not 10,000 iterations). On bookshelf_small's
-100 problems (seed 0, 1 CPU s) it solved all 100 with a median of 2.2 ms CPU, where strict turns
-missed problem 6 with a median of 6.3 ms (docs/motion.md, "Narrow passages")."""
+100 problems (seed 0, 1 CPU s) it solved all 100 with a median of 2.2 ms CPU; strict turns took a
+median of 6.3 ms over the first 30 and missed problem 6 (docs/motion.md, "A compiled loop, and the
+narrow passages")."""
 PLANNERS = ("ours", "OMPL, same checker", "OMPL, PyBullet checker")
 
 
