@@ -26,7 +26,7 @@ import statistics
 import sys
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -282,18 +282,25 @@ def judged(planned: Planned, query: MotionQuery, judge: CollisionChecker, resolu
 
 
 def plan_ours(
-    query: MotionQuery, checker: CollisionChecker, seed: int, time_budget_s: float, cpu_budget: bool = False
+    query: MotionQuery,
+    checker: CollisionChecker,
+    seed: int,
+    time_budget_s: float,
+    cpu_budget: bool = False,
+    search: RrtConnectHyperparameters | None = None,
 ) -> Planned:
-    """Our RRT-Connect, then our shortcut with what is left of the budget (wall seconds, or with
-    ``cpu_budget`` CPU seconds)."""
+    """Our RRT-Connect (its step and iteration limit from ``search``, default the planner's own),
+    then our shortcut with what is left of the budget (wall seconds, or with ``cpu_budget`` CPU
+    seconds)."""
     clock = time.process_time if cpu_budget else time.perf_counter
+    search = search or RrtConnectHyperparameters()
     cpu = time.process_time()
     planned = plan_rrt_connect(
         query.start,
         query.goal,
         query.space,
         checker,
-        RrtConnectHyperparameters(edge_resolution=EDGE_RESOLUTION, clock=clock),
+        replace(search, edge_resolution=EDGE_RESOLUTION, clock=clock),
         seed=seed,
         time_budget_s=time_budget_s,
     )

@@ -93,3 +93,21 @@ def test_seven_joints_around_a_ball_then_shortcut() -> None:
     smoothed = shortcut_path(result.require_path(), world, seed=5).path
     assert_valid_path(smoothed, start, goal, world, space)
     assert path_length(smoothed) <= path_length(result.require_path())
+
+
+def test_a_balanced_search_waits_for_a_tree_trapped_near_its_end(
+    unit_square: ConfigurationSpace, enclosed_goal_world: BoxBallWorld
+) -> None:
+    goal = [0.85, 0.85]
+    nodes = {}
+    for tree_balance in (0.0, 1.5):
+        params = RrtConnectHyperparameters(max_iterations=300, tree_balance=tree_balance)
+        result = plan_rrt_connect(START, goal, unit_square, enclosed_goal_world, params)
+        assert result.status is PlanStatus.ITERATION_LIMIT
+        nodes[tree_balance] = result.nodes
+    assert nodes[1.5] < nodes[0.0] / 2  # the start tree no longer outgrows the enclosed goal's
+
+
+def test_a_tree_balance_below_one_is_refused() -> None:
+    with pytest.raises(ValueError, match="tree_balance"):
+        RrtConnectHyperparameters(tree_balance=0.5)

@@ -1,4 +1,4 @@
-"""``python -m kitchen_tamp.cli.prepare``: compile the sphere model's and the planner's kernels at install.
+"""``python -m kitchen_tamp.cli.prepare``: compile the sphere model's and the planners' kernels at install.
 
 The validity and clearance kernels are compiled by numba the first time they are
 called (about half a minute of one core) and cached on disk beside their sources
@@ -8,7 +8,8 @@ first run spends its time planning rather than compiling; an installed wheel can
 run it too (``kitchen-tamp-prepare``). It calls each kernel once, with the argument
 types a run gives it, on the default kitchen built in a throw-away cache folder,
 so nothing lands in the user's cache (no models, no spheres): their first run
-still starts from an empty cache. The activity planner's relaxed exploration
+still starts from an empty cache. RRT-Connect's compiled loop runs one iteration on that
+kitchen's sphere model. The activity planner's relaxed exploration
 (``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
 (``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
 the default kitchen's task, and the search once more ahead of time into an
@@ -17,14 +18,20 @@ extension module that runs without numba (``greedy_ahead``).
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import tempfile
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from kitchen_tamp.planning import Task
+
+if TYPE_CHECKING:  # the real import loads numba, which `main` must import before moving the cache
+    from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
 
 
 def _compile_kernels() -> None:
@@ -44,7 +51,19 @@ def _compile_kernels() -> None:
     checker.is_valid(home)
     checker.is_valid_without_padding(home)
     SphereClearance(checker.model, 0.005, ends=home)(home)
+    _compile_rrt_connect_loop(checker, home[0])
     _compile_planning_kernels(task)
+
+
+def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
+    """One iteration of RRT-Connect's compiled loop (`compiled_rrt_connect`) from ``home`` to itself."""
+    from kitchen_tamp.motion import ConfigurationSpace
+    from kitchen_tamp.motion.configuration_space import UniformSamples
+    from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
+
+    samples = UniformSamples(ConfigurationSpace(checker.lower, checker.upper), np.random.default_rng(0))
+    settings = LoopSettings(1.0, 0.01, 1, 0.0, math.inf, time.perf_counter)
+    run_compiled_loop(home, home, samples, checker.compiled_validity(), settings)
 
 
 def _compile_planning_kernels(task: Task) -> None:
@@ -72,6 +91,7 @@ def main() -> int:
     clock = time.perf_counter()
     # numba decides where its cache goes when the kernels are imported: before the cache moves
     import kitchen_tamp.motion.geometry.spheres
+    import kitchen_tamp.motion.sampling.rrt_connect_kernel
     import kitchen_tamp.planning.relaxed_kernel
     import kitchen_tamp.planning.search.greedy_kernel  # noqa: F401
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -67,6 +67,17 @@ class CompiledSegments(Protocol):
         self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
     ) -> tuple[float, int]:
         """(the free length from q0 toward q1, configurations counted)."""
+        ...
+
+
+@runtime_checkable
+class CompiledValidity(Protocol):
+    """A checker whose every verdict a compiled loop can reach without Python: the sphere model's
+    validity arrays and margin, for `sphere_segments`' kernels (the compiled RRT-Connect loop)."""
+
+    def compiled_validity(self) -> tuple[Any, float] | None:
+        """(the model's `ValidityArrays`, the margin), or None when some verdict needs Python
+        (an exact model deciding near an end)."""
         ...
 
 

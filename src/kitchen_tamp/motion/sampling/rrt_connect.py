@@ -21,7 +21,7 @@ from kitchen_tamp.motion.planning_result import (
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
 from kitchen_tamp.motion.sampling.rrt import steer
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
+from kitchen_tamp.motion.segment_checking import CompiledValidity, CountingSegmentChecker
 
 
 @dataclass(frozen=True)
@@ -31,6 +31,10 @@ class RrtConnectHyperparameters:
     step_size: float = 1.0
     edge_resolution: float = PLANNING_RESOLUTION_RAD
     max_iterations: int = 10_000
+    tree_balance: float = 0.0
+    """0: the trees take turns. Positive (at least 1): after an iteration the other tree grows next
+    unless it holds more than ``tree_balance`` times this tree's nodes, then this one grows again
+    (a tree trapped near its end by a narrow passage is grown until it is out)."""
     clock: Callable[[], float] = time.perf_counter
     """What the time budget is measured on: wall seconds; ``time.process_time`` for CPU seconds."""
 
@@ -41,6 +45,8 @@ class RrtConnectHyperparameters:
             raise ValueError(f"edge_resolution must be positive, got {self.edge_resolution}")
         if self.max_iterations < 1:
             raise ValueError(f"max_iterations must be at least 1, got {self.max_iterations}")
+        if self.tree_balance != 0.0 and not self.tree_balance >= 1.0:
+            raise ValueError(f"tree_balance must be 0 or at least 1, got {self.tree_balance}")
 
 
 def extend_tree(
@@ -117,7 +123,9 @@ def plan_rrt_connect(
 ) -> PlanningResult:
     """Bidirectional RRT: extend one tree toward a sample, connect the other to the new node.
 
-    Raises `InvalidMotionQueryError` for a malformed or out-of-bounds
+    With the sphere model as the checker (a `CompiledValidity` that answers), the loop runs
+    compiled (`compiled_rrt_connect`): the same search from the same samples, without Python
+    between the segment checks. Raises `InvalidMotionQueryError` for a malformed or out-of-bounds
     start/goal; a start or goal in collision is reported by the result's status.
     """
     params = hyperparameters or RrtConnectHyperparameters()
@@ -146,6 +154,20 @@ def plan_rrt_connect(
     if segments.segment_valid(q_start, q_goal, check_start=False, check_end=False):
         return finish(PlanStatus.SOLVED, 0, np.stack([q_start, q_goal]))
 
+    compiled = checker.compiled_validity() if isinstance(checker, CompiledValidity) else None
+    if compiled is not None:
+        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
+
+        settings = LoopSettings(
+            params.step_size,
+            params.edge_resolution,
+            params.max_iterations,
+            params.tree_balance,
+            deadline,
+            clock,
+        )
+        outcome = run_compiled_loop(q_start, q_goal, samples, compiled, settings)
+        return outcome.result(segments.configurations_checked, clock() - clock_start)
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
         if clock() >= deadline:
@@ -161,4 +183,6 @@ def plan_rrt_connect(
                     path = _joined_path(start_tree, end, goal_tree, new)
                 return finish(PlanStatus.SOLVED, iteration, path)
         growing, other = other, growing
+        if params.tree_balance and len(growing) > params.tree_balance * len(other):
+            growing, other = other, growing
     return finish(PlanStatus.ITERATION_LIMIT, params.max_iterations)

@@ -123,6 +123,10 @@ class SphereCollisionChecker:
         first = int(np.argmin(valid))
         return None if valid[first] else first
 
+    def compiled_validity(self) -> tuple[ValidityArrays, float]:
+        """`CompiledValidity`: the packed kernel arrays and the margin (every verdict is compiled)."""
+        return self._arrays_packed, self.margin
+
     def segment_checked(
         self,
         q0: JointConfiguration,

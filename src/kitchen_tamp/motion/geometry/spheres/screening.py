@@ -186,6 +186,10 @@ class EndConfirmedChecker(Generic[Exact]):
         """The ends the spheres reject and the exact model accepts: where the exact model decides."""
         self._segments = CountingSegmentChecker(self, spheres.segment_resolution)
 
+    def compiled_validity(self) -> tuple[object, float] | None:
+        """`CompiledValidity`: the spheres' when no end needs the exact model, else None."""
+        return self.spheres.compiled_validity() if len(self.ends) == 0 else None
+
     def _near_ends(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs``: whether it lies within ``reach`` of one of ``ends``."""
         gaps = np.linalg.norm(qs[:, np.newaxis, :] - self.ends[np.newaxis], axis=2)

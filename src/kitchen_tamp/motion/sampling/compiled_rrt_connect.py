@@ -1,0 +1,158 @@
+"""RRT-Connect's loop in compiled calls (`rrt_connect_kernel`), driven from Python between them.
+
+Each call runs the iterations of one block of samples (or fewer, when the trees need room);
+between calls the clock is read and the tree arrays grown, so the time budget is kept to within
+one block of iterations. Used by `plan_rrt_connect` when the checker is the sphere model
+(`CompiledValidity`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from kitchen_tamp.motion.collision_checker import JointConfiguration
+from kitchen_tamp.motion.configuration_space import UniformSamples
+from kitchen_tamp.motion.joint_path import JointPath
+from kitchen_tamp.motion.planning_result import PlanningResult, PlanStatus
+from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
+from kitchen_tamp.motion.sampling.rrt_connect_kernel import (
+    COUNTER_CHECKS,
+    COUNTER_COUNT,
+    COUNTER_ITERATIONS,
+    COUNTER_JOINED,
+    COUNTER_SIZES,
+    rrt_connect_iterations,
+)
+
+_ITERATIONS: Any = rrt_connect_iterations
+"""The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
+
+INITIAL_CAPACITY = 1024
+"""Rows of each tree's arrays at first; they double when a block of iterations might not fit."""
+
+
+@dataclass(frozen=True)
+class LoopSettings:
+    """What the loop is given: step and resolution (rad), its limits and its clock."""
+
+    step_size: float
+    resolution: float
+    max_iterations: int
+    tree_balance: float
+    deadline: float
+    clock: Callable[[], float]
+
+
+@dataclass(frozen=True, eq=False)
+class LoopOutcome:
+    """How the loop ended (SOLVED with a path, or the limit it hit) and its counts."""
+
+    status: PlanStatus
+    path: JointPath | None
+    iterations: int
+    nodes: int
+    collision_checks: int
+
+    def result(self, checked_before: int, planning_time_s: float) -> PlanningResult:
+        """The planner's answer, counting ``checked_before`` configurations checked before the loop."""
+        return PlanningResult(
+            status=self.status,
+            path=self.path,
+            iterations=self.iterations,
+            nodes=self.nodes,
+            collision_checks=checked_before + self.collision_checks,
+            planning_time_s=planning_time_s,
+        )
+
+
+class _Trees:
+    """Both trees' arrays, as the kernel takes them: tree 0 rooted at the start, 1 at the goal."""
+
+    def __init__(self, start: JointConfiguration, goal: JointConfiguration) -> None:
+        self.nodes = np.empty((2, INITIAL_CAPACITY, start.size))
+        self.parents = np.empty((2, INITIAL_CAPACITY), dtype=np.int64)
+        self.squared_norms = np.empty((2, INITIAL_CAPACITY))
+        self.counters = np.zeros(COUNTER_COUNT, dtype=np.int64)
+        for tree, root in enumerate((start, goal)):
+            self.nodes[tree, 0] = root
+            self.parents[tree, 0] = NO_PARENT
+            self.squared_norms[tree, 0] = float(root @ root)
+            self.counters[COUNTER_SIZES + tree] = 1
+
+    @property
+    def node_count(self) -> int:
+        return int(self.counters[COUNTER_SIZES] + self.counters[COUNTER_SIZES + 1])
+
+    def grow(self) -> None:
+        """Double the rows of every tree array."""
+        capacity = self.nodes.shape[1]
+        nodes = np.empty((2, 2 * capacity, self.nodes.shape[2]))
+        parents = np.empty((2, 2 * capacity), dtype=np.int64)
+        squared_norms = np.empty((2, 2 * capacity))
+        nodes[:, :capacity], parents[:, :capacity] = self.nodes, self.parents
+        squared_norms[:, :capacity] = self.squared_norms
+        self.nodes, self.parents, self.squared_norms = nodes, parents, squared_norms
+
+    def branch(self, tree: int, index: int) -> JointPath:
+        """The configurations from tree ``tree``'s root to its node ``index``."""
+        chain: list[int] = []
+        while index != NO_PARENT:
+            chain.append(index)
+            index = int(self.parents[tree, index])
+        return np.array(self.nodes[tree, chain[::-1]])
+
+    def joined_path(self) -> JointPath:
+        """Start-tree branch to its end node, then the goal-tree branch backwards (shared node once)."""
+        start_end, goal_end = (int(self.counters[COUNTER_JOINED + 1 + tree]) for tree in (0, 1))
+        return np.concatenate([self.branch(0, start_end), self.branch(1, goal_end)[-2::-1]])
+
+
+def run_compiled_loop(
+    start: JointConfiguration,
+    goal: JointConfiguration,
+    samples: UniformSamples,
+    compiled: tuple[Any, float],
+    settings: LoopSettings,
+) -> LoopOutcome:
+    """RRT-Connect's iterations from the two roots until the trees join or a limit is hit;
+    ``compiled`` is the sphere model's (`ValidityArrays`, margin)."""
+    arrays, margin = compiled
+    trees = _Trees(start, goal)
+    counters = trees.counters
+    resolutions_per_step = max(1, round(settings.step_size / settings.resolution))
+    reach = float(np.linalg.norm(samples.space.upper - samples.space.lower))
+    room = 2 + math.ceil(reach / (resolutions_per_step * settings.resolution))
+    status = PlanStatus.ITERATION_LIMIT
+    while counters[COUNTER_ITERATIONS] < settings.max_iterations:
+        if settings.clock() >= settings.deadline:
+            status = PlanStatus.TIME_LIMIT
+            break
+        if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + room > trees.nodes.shape[1]:
+            trees.grow()
+        block = samples.upcoming()
+        used = _ITERATIONS(
+            block,
+            settings.step_size,
+            settings.resolution,
+            settings.max_iterations,
+            room,
+            trees.nodes,
+            trees.parents,
+            trees.squared_norms,
+            counters,
+            arrays,
+            margin,
+            settings.tree_balance,
+        )
+        samples.skip(int(used))
+        if counters[COUNTER_JOINED]:
+            status = PlanStatus.SOLVED
+            break
+    path = trees.joined_path() if status is PlanStatus.SOLVED else None
+    iterations, checks = int(counters[COUNTER_ITERATIONS]), int(counters[COUNTER_CHECKS])
+    return LoopOutcome(status, path, iterations, trees.node_count, checks)

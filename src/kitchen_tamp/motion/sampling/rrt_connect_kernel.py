@@ -1,0 +1,223 @@
+"""RRT-Connect's loop compiled (numba), for the sphere model: a run of iterations in one call.
+
+The same search as `kitchen_tamp.motion.sampling.rrt_connect`, step for step: extend the growing
+tree one step toward a sample, connect the other tree to the new node, swap. Nearest nodes are
+found over the trees' arrays (each node's squared norm kept beside it), and every segment is
+checked by the sphere model's compiled segment kernels (`sphere_segments`) on its
+`ValidityArrays`, with no Python between them. Samples come from the caller, a block at a time
+(drawn by numpy from the seeded generator, the same stream the Python loop draws), so the same
+seed gives the same search.
+
+The trees live in arrays the caller owns and passes back in each call: ``nodes`` (2, capacity, d),
+``parents`` (2, capacity), ``squared_norms`` (2, capacity), and ``counters`` (see the ``COUNTER_``
+indices). A call runs until the samples run out, the trees are joined, or the trees may not have
+room for another iteration; the caller checks the clock, grows the arrays and calls again.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked, segment_checked
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+COUNTER_ITERATIONS = 0
+"""Iterations run so far."""
+COUNTER_GROWING = 1
+"""Which tree (0: the start's, 1: the goal's) the next iteration extends."""
+COUNTER_CHECKS = 2
+"""Configurations checked so far (as `CountingSegmentChecker` counts them)."""
+COUNTER_SIZES = 3
+"""Nodes in tree 0 at this index, in tree 1 at the next."""
+COUNTER_JOINED = 5
+"""1 once the trees are joined: the start tree's end node at the next index, the goal tree's after."""
+COUNTER_COUNT = 8
+
+
+@numba.njit(cache=True)
+def _interval_count(q0: FloatArray, q1: FloatArray, resolution: float) -> int:
+    """`kitchen_tamp.joint_spacing.interval_count`."""
+    return max(1, math.ceil(_distance(q0, q1) / resolution))
+
+
+@numba.njit(cache=True)
+def _distance(q0: FloatArray, q1: FloatArray) -> float:
+    squared = 0.0
+    for j in range(q0.shape[0]):
+        squared += (q1[j] - q0[j]) * (q1[j] - q0[j])
+    return math.sqrt(squared)
+
+
+@numba.njit(cache=True)
+def _nearest(tree: int, q: FloatArray, nodes: FloatArray, squared_norms: FloatArray, size: int) -> int:
+    """Index of the node of ``tree`` closest to ``q``: the smallest |x|^2 - 2 x.q."""
+    best, best_key = 0, np.inf
+    for i in range(size):
+        dot = 0.0
+        for j in range(q.shape[0]):
+            dot += nodes[tree, i, j] * q[j]
+        key = squared_norms[tree, i] - 2.0 * dot
+        if key < best_key:
+            best, best_key = i, key
+    return best
+
+
+@numba.njit(cache=True)
+def _add(
+    tree: int,
+    q: FloatArray,
+    parent: int,
+    nodes: FloatArray,
+    parents: IntArray,
+    squared_norms: FloatArray,
+    counters: IntArray,
+) -> int:
+    index: int = counters[COUNTER_SIZES + tree]
+    squared = 0.0
+    for j in range(q.shape[0]):
+        nodes[tree, index, j] = q[j]
+        squared += q[j] * q[j]
+    parents[tree, index] = parent
+    squared_norms[tree, index] = squared
+    counters[COUNTER_SIZES + tree] = index + 1
+    return index
+
+
+@numba.njit(cache=True)
+def _extend(
+    tree: int,
+    target: FloatArray,
+    step_size: float,
+    resolution: float,
+    nodes: FloatArray,
+    parents: IntArray,
+    squared_norms: FloatArray,
+    counters: IntArray,
+    arrays: ValidityArrays,
+    margin: float,
+) -> int:
+    """One step from the nearest node toward ``target`` (`rrt_connect.extend_tree`): the new node's
+    index, or -1 when the step collides."""
+    near = _nearest(tree, target, nodes, squared_norms, counters[COUNTER_SIZES + tree])
+    q_near = nodes[tree, near].copy()
+    distance = _distance(q_near, target)
+    q_new = target.copy() if distance <= step_size else q_near + (target - q_near) * (step_size / distance)
+    intervals = _interval_count(q_near, q_new, resolution)
+    free, checked = segment_checked(q_near, q_new, intervals, False, True, arrays, margin)
+    counters[COUNTER_CHECKS] += checked
+    if not free:
+        return -1
+    return _add(tree, q_new, near, nodes, parents, squared_norms, counters)
+
+
+@numba.njit(cache=True)
+def _connect(
+    tree: int,
+    target: FloatArray,
+    step_size: float,
+    resolution: float,
+    nodes: FloatArray,
+    parents: IntArray,
+    squared_norms: FloatArray,
+    counters: IntArray,
+    arrays: ValidityArrays,
+    margin: float,
+) -> tuple[int, bool]:
+    """Steps from the nearest node toward ``target`` until it is reached or a step collides
+    (`rrt_connect.connect_tree`): the last node's index and whether it is ``target``."""
+    near = _nearest(tree, target, nodes, squared_norms, counters[COUNTER_SIZES + tree])
+    q_near = nodes[tree, near].copy()
+    distance = _distance(q_near, target)
+    if distance == 0.0:
+        return near, True
+    free_length, checked = free_prefix_checked(q_near, target, distance, resolution, arrays, margin)
+    counters[COUNTER_CHECKS] += checked
+    reached = free_length >= distance
+    resolutions_per_step = max(1, round(step_size / resolution))
+    if reached:
+        steps = math.ceil(distance / (resolutions_per_step * resolution)) - 1
+    else:
+        steps = round(free_length / resolution) // resolutions_per_step
+    index = near
+    for step in range(1, steps + 1):
+        along = (step * resolutions_per_step) * resolution
+        q = q_near + (along / distance) * (target - q_near)
+        index = _add(tree, q, index, nodes, parents, squared_norms, counters)
+    if not reached:
+        return index, False
+    last = nodes[tree, index].copy()
+    intervals = _interval_count(last, target, resolution)
+    free, checked = segment_checked(last, target, intervals, False, False, arrays, margin)
+    counters[COUNTER_CHECKS] += checked
+    if not free:
+        return index, False
+    return _add(tree, target, index, nodes, parents, squared_norms, counters), True
+
+
+@numba.njit(cache=True)
+def rrt_connect_iterations(
+    samples: FloatArray,
+    step_size: float,
+    resolution: float,
+    max_iterations: int,
+    room_per_iteration: int,
+    nodes: FloatArray,
+    parents: IntArray,
+    squared_norms: FloatArray,
+    counters: IntArray,
+    arrays: ValidityArrays,
+    margin: float,
+    tree_balance: float,
+) -> int:
+    """Run iterations on the trees, one per row of ``samples`` (the samples used), stopping early
+    when the trees are joined, at ``max_iterations``, or when either tree has fewer than
+    ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
+    ``tree_balance`` a tree more than that many times the other's size waits its turn."""
+    capacity = nodes.shape[1]
+    used = 0
+    for row in range(samples.shape[0]):
+        if counters[COUNTER_ITERATIONS] >= max_iterations:
+            break
+        if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + room_per_iteration > capacity:
+            break
+        used += 1
+        counters[COUNTER_ITERATIONS] += 1
+        growing = counters[COUNTER_GROWING]
+        other = 1 - growing
+        target = samples[row]
+        new = _extend(
+            growing, target, step_size, resolution, nodes, parents, squared_norms, counters, arrays, margin
+        )
+        if new >= 0:
+            reached_target = nodes[growing, new].copy()
+            end, reached = _connect(
+                other,
+                reached_target,
+                step_size,
+                resolution,
+                nodes,
+                parents,
+                squared_norms,
+                counters,
+                arrays,
+                margin,
+            )
+            if reached:
+                counters[COUNTER_JOINED] = 1
+                counters[COUNTER_JOINED + 1 + growing] = new
+                counters[COUNTER_JOINED + 1 + other] = end
+                break
+        if (
+            tree_balance > 0.0
+            and counters[COUNTER_SIZES + other] > tree_balance * counters[COUNTER_SIZES + growing]
+        ):
+            other = growing  # the other tree is the larger by more than the balance: grow this one again
+        counters[COUNTER_GROWING] = other
+    return used

@@ -1,0 +1,113 @@
+"""RRT-Connect's compiled loop (used when the checker is the sphere model): the same search as the
+Python loop from the same seed, paths free for Drake, the same path for the same seed."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
+from kitchen_tamp.motion import (
+    ConfigurationSpace,
+    JointConfiguration,
+    JointConfigurations,
+    PlanStatus,
+    RrtConnectHyperparameters,
+    ValidityMask,
+    densify_path,
+    plan_rrt_connect,
+)
+from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+from kitchen_tamp.motion.motion_bench_maker import (
+    MBM_PANDA_LOWER,
+    MBM_PANDA_UPPER,
+    mbm_scene,
+    read_mbm_problem,
+)
+from kitchen_tamp.motion.segment_checking import CompiledValidity
+from kitchen_tamp.world import panda_urdf_path
+from tests.motion.test_motion_bench_maker import TABLE_REQUEST, TABLE_SCENE
+
+SPACE = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)
+
+
+class PythonLoopSpheres:
+    """The sphere model without its compiled validity: `plan_rrt_connect` runs its Python loop."""
+
+    def __init__(self, spheres: SphereCollisionChecker) -> None:
+        self.spheres = spheres
+
+    def is_valid(self, qs: JointConfigurations) -> ValidityMask:
+        return self.spheres.is_valid(qs)
+
+    def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
+        return self.spheres.segment_valid(q0, q1)
+
+    def segment_checked(self, *arguments: Any) -> tuple[bool, int]:
+        return self.spheres.segment_checked(*arguments)
+
+    def free_prefix_checked(self, *arguments: Any) -> tuple[float, int]:
+        return self.spheres.free_prefix_checked(*arguments)
+
+
+@pytest.fixture(scope="module")
+def table(
+    tmp_path_factory: pytest.TempPathFactory,
+) -> Iterator[tuple[Any, SphereCollisionChecker, DrakeCollisionChecker]]:
+    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
+    scene = mbm_scene(problem, panda_urdf_path(), Path(tmp_path_factory.mktemp("table")))
+    yield problem, SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
+
+
+def test_the_sphere_model_offers_its_compiled_validity(table: Any) -> None:
+    _, spheres, _ = table
+    assert isinstance(spheres, CompiledValidity) and spheres.compiled_validity() is not None
+    assert not isinstance(PythonLoopSpheres(spheres), CompiledValidity)
+
+
+@pytest.mark.parametrize(("seed", "tree_balance"), [(0, 0.0), (1, 0.0), (2, 0.0), (0, 1.5), (1, 1.5)])
+def test_the_compiled_loop_searches_as_the_python_loop_does(
+    table: Any, seed: int, tree_balance: float
+) -> None:
+    problem, spheres, _ = table
+    start, goal = problem.start, problem.goals[0]
+    search = RrtConnectHyperparameters(tree_balance=tree_balance)
+    compiled = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=seed, time_budget_s=math.inf)
+    python = plan_rrt_connect(
+        start, goal, SPACE, PythonLoopSpheres(spheres), search, seed=seed, time_budget_s=math.inf
+    )
+    assert compiled.status is PlanStatus.SOLVED and compiled.iterations > 0
+    assert (compiled.iterations, compiled.nodes) == (python.iterations, python.nodes)
+    assert compiled.collision_checks == python.collision_checks
+    np.testing.assert_allclose(compiled.require_path(), python.require_path(), rtol=0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(table: Any, seed: int) -> None:
+    problem, spheres, exact = table
+    start, goal = problem.start, problem.goals[0]
+    paths = [
+        plan_rrt_connect(start, goal, SPACE, spheres, seed=seed, time_budget_s=math.inf).require_path()
+        for _ in range(2)
+    ]
+    np.testing.assert_array_equal(paths[0], paths[1])
+    assert np.allclose(paths[0][0], start) and np.allclose(paths[0][-1], goal)
+    assert np.all(exact.is_valid(densify_path(paths[0], JUDGE_RESOLUTION_RAD)))
+    assert not np.all(exact.is_valid(densify_path(np.stack([start, goal]), 0.01)))  # a detour
+
+
+def test_the_compiled_loop_stops_at_its_iteration_limit(table: Any) -> None:
+    problem, spheres, _ = table
+    start, goal = problem.start, problem.goals[0]
+    needed = plan_rrt_connect(start, goal, SPACE, spheres, seed=1, time_budget_s=math.inf).iterations
+    assert needed > 1
+    hyperparameters = RrtConnectHyperparameters(max_iterations=needed - 1)
+    result = plan_rrt_connect(start, goal, SPACE, spheres, hyperparameters, seed=1, time_budget_s=math.inf)
+    assert result.status is PlanStatus.ITERATION_LIMIT
+    assert result.path is None and result.iterations == needed - 1 and result.nodes > 2
