@@ -41,6 +41,12 @@ class SkillParameters:
     placement_draws: int = 20
     """Poses one placement sample may draw until one is clear of the boxes already there
     (drawing costs no motion; the first is clear on an empty region)."""
+    packed_probability: float = 0.75
+    """Chance that a placement attempt on a region that already holds boxes first tries the next
+    packed pose (flush against the region's edges and the boxes there) before drawing uniform
+    poses; an attempt whose uniform draws are all crowded always does. Uniform poses alone
+    scatter boxes at random yaws until the room left is in pieces none of which fits one more
+    (the packed plate's fifth block)."""
     placement_gap: float = 0.006
     """A placed box keeps at least this far from the boxes beside it (footprint to footprint).
     Under physics a released box settles up to about 2 mm from where the plan put it, and
@@ -54,7 +60,8 @@ class SkillParameters:
             raise ValueError(f"skill distances must be positive: {self}")
         probabilities = (self.keep_down_probability, self.hand_above_probability)
         budgets = min(self.attempts, self.placement_draws)
-        if min(probabilities) < 0.0 or sum(probabilities) > 1.0 or budgets < 1:
+        packing = 0.0 <= self.packed_probability <= 1.0
+        if min(probabilities) < 0.0 or sum(probabilities) > 1.0 or budgets < 1 or not packing:
             raise ValueError(f"invalid skill parameters: {self}")
         if not 0.0 < self.grasp_depth[0] <= self.grasp_depth[1]:
             raise ValueError(f"grasp depth range must be increasing and positive: {self.grasp_depth}")

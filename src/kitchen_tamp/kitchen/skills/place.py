@@ -3,16 +3,19 @@ the boxes already there, open the fingers, back the hand away along the grasp's 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from kitchen_tamp.kitchen.abstraction import RESTING_TOLERANCE
 from kitchen_tamp.kitchen.action_replay import first_problem
 from kitchen_tamp.kitchen.binding import ActionBinding
 from kitchen_tamp.kitchen.errors import FailureKind, SkillFailure
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
-from kitchen_tamp.kitchen.scene.regions import SupportRegion
+from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners
 from kitchen_tamp.kitchen.segment import Segment
+from kitchen_tamp.kitchen.skills.packing import box_footprint, packed_placements, region_footprint
 from kitchen_tamp.kitchen.skills.parameters import SkillParameters
 from kitchen_tamp.kitchen.skills.placements import (
     Placement,
@@ -33,6 +36,24 @@ UP = np.array([0.0, 0.0, 1.0])
 
 Neighbour = tuple[str, Pose, tuple[float, float, float]]
 """A box already in the scene: its name, pose and size."""
+
+
+@dataclass
+class PackedQueue:
+    """The packed placements of one place (``kitchen.skills.packing``), computed when first
+    needed and handed out in turn, round and round (each try draws its own IK)."""
+
+    placements: list[Placement] | None = None
+    handed_out: int = 0
+
+    def next(self, compute: Callable[[], list[Placement]]) -> Placement | None:
+        if self.placements is None:
+            self.placements = compute()
+        if not self.placements:
+            return None
+        placement = self.placements[self.handed_out % len(self.placements)]
+        self.handed_out += 1
+        return placement
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,26 +78,62 @@ class PlaceProblem:
     open_width: float
     carrying_checker: PyBulletCollisionChecker
     clear_checker: PyBulletCollisionChecker
+    packed: PackedQueue = field(default_factory=PackedQueue)
 
     @property
     def action_text(self) -> str:
         return action_text(self.action)
 
     def draw(self, rng: np.random.Generator, rejections: Rejections) -> Placement | None:
-        """A stable pose in the region clear of the boxes there (up to ``placement_draws`` tries,
-        which cost no motion), or None."""
+        """A stable pose in the region clear of the boxes there, or None: on a region that holds
+        boxes, with ``packed_probability`` the next packed pose (flush against the region's edges
+        and the boxes there); else up to ``placement_draws`` uniform draws (which cost no
+        motion), and the next packed pose when none of them was clear."""
+        packing = self.centre_inset is None
+        if packing and self.occupied() and rng.random() < self.parameters.packed_probability:
+            return self.next_packed(rng, rejections)
         for _ in range(self.parameters.placement_draws):
             placement = sample_placement(self.region, self.size, rng, self.preferred, self.centre_inset)
             if placement is None:
                 return None
-            pose = placement.world_from_box
-            if any(overlaps_region(pose, self.size, region) for region in self.excluded):
-                continue
-            gap = self.parameters.placement_gap
-            crowded = [n for n, at, size in self.neighbours if boxes_overlap(pose, self.size, at, size, gap)]
-            if rejections.placement(crowded):
+            crowded = self.crowding(placement.world_from_box)
+            if crowded is not None and rejections.placement(crowded):
                 return placement
-        return None
+        return self.next_packed(rng, rejections) if packing else None
+
+    def next_packed(self, rng: np.random.Generator, rejections: Rejections) -> Placement | None:
+        placement = self.packed.next(lambda: self.packed_placements(rng))
+        if placement is not None:
+            rejections.placement([])
+        return placement
+
+    def occupied(self) -> bool:
+        """Whether some box stands on the region (its centre over it, its bottom near it)."""
+        top = self.region.top_z
+        return any(
+            self.region.contains_xy(at.translation)
+            and abs(box_corners(at, size)[:, 2].min() - top) <= RESTING_TOLERANCE
+            for _, at, size in self.neighbours
+        )
+
+    def crowding(self, pose: Pose) -> list[str] | None:
+        """The boxes a pose of the box comes closer to than the placement gap, or None if it
+        reaches over an excluded region."""
+        if any(overlaps_region(pose, self.size, region) for region in self.excluded):
+            return None
+        gap = self.parameters.placement_gap
+        return [n for n, at, size in self.neighbours if boxes_overlap(pose, self.size, at, size, gap)]
+
+    def packed_placements(self, rng: np.random.Generator) -> list[Placement]:
+        """The packed poses of the box in the region that are clear of the boxes there."""
+        gap = self.parameters.placement_gap
+        footprints = [
+            *(box_footprint(self.region, at, size, gap) for _, at, size in self.neighbours),
+            *(region_footprint(self.region, region) for region in self.excluded),
+        ]
+        faces = [face for face, probability in self.preferred if probability > 0.0] or ALL_FACES
+        candidates = packed_placements(self.region, self.size, faces, footprints, rng)
+        return [p for p in candidates if self.crowding(p.world_from_box) == []]
 
     def segments(
         self, placement: Placement, rng: np.random.Generator, rejections: Rejections
@@ -145,6 +202,9 @@ def _released_checkers(
         touching = kitchen.collision_checker([kitchen.finger_contact(box)])
         return touching, kitchen.collision_checker(margin=clearance)
 
+
+ALL_FACES = [(axis, sign) for axis in range(3) for sign in (-1, 1)]
+"""Every face a box may be put down on."""
 
 TARGET_ROLES = ("support", "drawer", "base")
 """The role that names where ``place`` / ``place_in`` / ``stack`` put the box."""

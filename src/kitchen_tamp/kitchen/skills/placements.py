@@ -112,7 +112,7 @@ def face_along(direction_in_box: FloatArray) -> tuple[int, int]:
     return axis, int(np.sign(direction_in_box[axis]))
 
 
-def _horizontal_axes(rotation: FloatArray) -> list[FloatArray]:
+def flat_axes(rotation: FloatArray) -> list[FloatArray]:
     """The two box axes that lie flat (a box resting on a face), else the world's x and y."""
     flat = [i for i in range(3) if abs(rotation[2, i]) < 0.5]
     axes = [rotation[:2, i] / np.linalg.norm(rotation[:2, i]) for i in flat]
@@ -140,8 +140,8 @@ def boxes_overlap(
     if corners_a[:, 2].max() <= corners_b[:, 2].min() or corners_b[:, 2].max() <= corners_a[:, 2].min():
         return False
     return footprints_overlap(
-        corners_a[:, :2], _horizontal_axes(world_from_a.rotation),
-        corners_b[:, :2], _horizontal_axes(world_from_b.rotation), margin,
+        corners_a[:, :2], flat_axes(world_from_a.rotation),
+        corners_b[:, :2], flat_axes(world_from_b.rotation), margin,
     )
 
 
@@ -152,4 +152,4 @@ def overlaps_region(world_from_box: Pose, size: Size, region: SupportRegion) -> 
     corners = np.array([frame.apply((sx * hx, sy * hy, 0.0)) for sx in (-1, 1) for sy in (-1, 1)])
     axes = [region.world_from_region.rotation[:2, i] for i in range(2)]
     points = box_corners(world_from_box, size)[:, :2]
-    return footprints_overlap(points, _horizontal_axes(world_from_box.rotation), corners[:, :2], axes, 0.0)
+    return footprints_overlap(points, flat_axes(world_from_box.rotation), corners[:, :2], axes, 0.0)
