@@ -15,7 +15,7 @@ slower than lama-first, geometric mean at most 0.5x, every problem solved. ``ben
 
 ``--evaluations`` times instead, in this process, one ``LandmarkEvaluator`` evaluation (h_FF, helpful
 actions, h_LM and its preferred operators) in Python and through the compiled kernels, in CPU milliseconds
-on the 200 states of seeded random walks, beside each row's ``work_per_evaluation``.
+on the 201 states of seeded random walks (the initial state and up to 200 more), beside each row's ``work_per_evaluation``.
 
 ``--split`` runs our planner once per row in a fresh process (new files) and splits its CPU seconds into
 the interpreter's start, our imports, reading and grounding, and the search (with numpy and the compiled
@@ -26,7 +26,6 @@ This module is the lama-first part of ``symbolic.py``, which parses the options 
 
 from __future__ import annotations
 
-import random
 import shutil
 import statistics
 import subprocess
@@ -51,7 +50,7 @@ from symbolic_process import (
 from kitchen_tamp.planning import load_task
 from kitchen_tamp.planning.heuristics import RelaxedExploration
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
-from kitchen_tamp.planning.task import State, Task
+from kitchen_tamp.planning.search.random_walks import random_walk_states
 
 WORST_RATIO = 2.0
 """The bar: no row slower than this times lama-first's."""
@@ -88,26 +87,12 @@ def _rows(only: set[str] | None) -> list[tuple[str, Path, Path]]:
     return rows
 
 
-def _walk_states(task: Task, walks: int = 10, length: int = 20) -> list[State]:
-    chooser = random.Random(1)
-    states = []
-    for _ in range(walks):
-        state = task.initial_state
-        for _ in range(length):
-            children = [child for child, _ in task.successor_indices(state)]
-            if not children:
-                break
-            state = chooser.choice(children)
-            states.append(state)
-    return states
-
-
 def evaluation_costs(domain: Path, problem: Path) -> tuple[str, float]:
     """The row's work per evaluation and CPU ms per evaluation in Python and through the kernels, and the
     CPU seconds of the first compiled evaluation (in the first row: loading numba and the kernels; numpy
     is loaded already)."""
     task = load_task(problem, domain)
-    states = _walk_states(task)
+    states = random_walk_states(task, seed=1, walks=10, length=20)
     milliseconds = []
     first = 0.0
     for after_work in (10**18, -1):

@@ -6,8 +6,6 @@ search: with the kernels from the first evaluation, ``gbfs`` returns the same pl
 
 from __future__ import annotations
 
-import random
-
 import numpy as np
 import pytest
 
@@ -17,6 +15,7 @@ from kitchen_tamp.planning.compiled_exploration import CompiledExploration
 from kitchen_tamp.planning.heuristics import RelaxedExploration
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
+from kitchen_tamp.planning.search.random_walks import random_walk_states
 from kitchen_tamp.planning.search.result import SearchBudget
 from kitchen_tamp.planning.task import State, Task
 from tests.planning.conftest import KITCHEN, REPO
@@ -30,21 +29,6 @@ PROBLEMS = [("depot", "task03.pddl"), ("sokoban", "task23.pddl"), ("rovers", "ta
 
 def _load(domain: str, problem: str) -> Task:
     return load_task(IPC / domain / problem, IPC / domain / "domain.pddl")
-
-
-def _walk_states(task: Task, seed: int, walks: int = 12, length: int = 25) -> list[State]:
-    """The states of seeded random walks from the initial state (dead ends included)."""
-    chooser = random.Random(seed)
-    states = [task.initial_state]
-    for _ in range(walks):
-        state = task.initial_state
-        for _ in range(length):
-            children = [child for child, _ in task.successor_indices(state)]
-            if not children:
-                break
-            state = chooser.choice(children)
-            states.append(state)
-    return states
 
 
 Answer = tuple[list[float], list[int], list[int], int]
@@ -67,7 +51,7 @@ def test_costs_supporters_plans_and_helpful_actions_equal_pythons(domain: str, p
     exploration = RelaxedExploration(task, "hadd")
     compiled = CompiledExploration(exploration)
     dead_ends = 0
-    for state in _walk_states(task, seed=len(task.actions)):
+    for state in random_walk_states(task, seed=len(task.actions), walks=12, length=25):
         expected = _python_answer(exploration, state)
         state_array = compiled.explore(state)
         assert (state_array is None) == (expected is None)
@@ -99,7 +83,7 @@ def test_evaluations_with_the_kernels_equal_pythons(domain: str, problem: str) -
     assert python.count is not None
     accepted = python.count.accepted_at_start(task.initial_state)
     towards_nearest = 0
-    for state in _walk_states(task, seed=len(task.atoms)):
+    for state in random_walk_states(task, seed=len(task.atoms), walks=12, length=25):
         expected = python.evaluate(state, accepted)
         assert compiled.evaluate(state, accepted) == expected
         _, next_up = python.count.value(state, accepted)
@@ -142,7 +126,7 @@ def test_the_evaluator_switches_to_the_kernels_only_after_enough_work() -> None:
     large = _load("depot", "task03.pddl")
     evaluator = LandmarkEvaluator(RelaxedExploration(large, "hadd"))
     evaluator.compiled_after_work = 40 * evaluator.work_per_evaluation
-    states = _walk_states(large, seed=3)
+    states = random_walk_states(large, seed=3, walks=12, length=25)
     for evaluated, state in enumerate(states[:40], start=1):
         evaluator.child(state, 0)
         assert evaluator.compiled is None, evaluated
