@@ -15,7 +15,8 @@ slower than lama-first, geometric mean at most 0.5x, every problem solved. ``ben
 
 ``--evaluations`` times instead, in this process, one ``LandmarkEvaluator`` evaluation (h_FF, helpful
 actions, h_LM and its preferred operators) in Python and through the compiled kernels, in CPU milliseconds
-on the 201 states of seeded random walks (the initial state and up to 200 more), beside each row's ``work_per_evaluation``.
+on the states of seeded random walks (the initial state and up to 200 more), beside each row's
+``work_per_evaluation``.
 
 ``--split`` runs our planner once per row in a fresh process (new files) and splits its CPU seconds into
 the interpreter's start, our imports, reading and grounding, and the search (with numpy and the compiled
