@@ -62,6 +62,14 @@ def _none_holds(state_bytes: ByteArray, atoms: IntArray, start: int, end: int) -
 
 
 @numba.njit(cache=True)
+def _action_applicable(state_bytes: ByteArray, action: int, pres: IntArray, pre_start: IntArray,
+                       negs: IntArray, neg_start: IntArray) -> bool:
+    """Whether ``action``'s positive preconditions hold in the state and its negative ones do not."""
+    return _all_hold(state_bytes, pres, pre_start[action], pre_start[action + 1]) and _none_holds(
+        state_bytes, negs, neg_start[action], neg_start[action + 1])
+
+
+@numba.njit(cache=True)
 def _push(heap: IntArray, size: int, key: int) -> int:
     """Push ``key`` onto the min-heap of ``size`` keys; the new size."""
     position = size
@@ -212,8 +220,7 @@ def applicable_achievers(state_bytes: ByteArray, targets: IntArray, achievers_st
     for target in targets:
         for achiever_position in range(achievers_start[target], achievers_start[target + 1]):
             action = achievers[achiever_position]
-            if (_all_hold(state_bytes, pres, pre_start[action], pre_start[action + 1])
-                    and _none_holds(state_bytes, negs, neg_start[action], neg_start[action + 1])):
+            if _action_applicable(state_bytes, action, pres, pre_start, negs, neg_start):
                 found[count] = action
                 count += 1
     return count

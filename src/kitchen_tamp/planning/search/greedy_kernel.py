@@ -32,7 +32,7 @@ from kitchen_tamp.planning.relaxed_kernel import (
     UNREACHED,
     ByteArray,
     IntArray,
-    _all_hold,
+    _action_applicable,
     _holds,
     _none_holds,
     _pop,
@@ -131,8 +131,7 @@ def _applicable(state: ByteArray, unconditional: IntArray, key_start: IntArray, 
             continue
         for position in range(key_start[atom], key_start[atom + 1]):
             action = key_actions[position]
-            if (_all_hold(state, pres, pre_start[action], pre_start[action + 1])
-                    and _none_holds(state, negs, neg_start[action], neg_start[action + 1])):
+            if _action_applicable(state, action, pres, pre_start, negs, neg_start):
                 out[count] = action
                 count += 1
     return count
