@@ -22,6 +22,7 @@ from kitchen_tamp.kitchen.errors import InitialStateMismatchError
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.scene.regions import SupportRegion, box_corners
 from kitchen_tamp.planning import Atom, atom_text
+from kitchen_tamp.world.transforms import FloatArray
 
 RESTING_GAP: Final = 0.001
 """Boxes are put down this far above a face, so resting is not a collision."""
@@ -33,11 +34,26 @@ RESTING_RELATIONS: Final = {
 """The kind of support a box rests on -> the relation."""
 
 
-def rests_on(kitchen: KitchenScene, box: str, region: SupportRegion) -> bool:
-    """Whether ``box`` stands on ``region`` (centre over it, bottom on its face)."""
+@dataclass(frozen=True)
+class _Footing:
+    """Where a loose box stands: its centre and the height of its lowest corner."""
+
+    centre: FloatArray
+    bottom: float
+
+    def on(self, region: SupportRegion) -> bool:
+        return region.contains_xy(self.centre) and abs(self.bottom - region.top_z) <= RESTING_TOLERANCE
+
+
+def _footing(kitchen: KitchenScene, box: str) -> _Footing:
     world_from_box = kitchen.box(box).base_pose()
     bottom = float(np.min(box_corners(world_from_box, kitchen.box_size(box))[:, 2]))
-    return region.contains_xy(world_from_box.translation) and abs(bottom - region.top_z) <= RESTING_TOLERANCE
+    return _Footing(world_from_box.translation, bottom)
+
+
+def rests_on(kitchen: KitchenScene, box: str, region: SupportRegion) -> bool:
+    """Whether ``box`` stands on ``region`` (centre over it, bottom on its face)."""
+    return _footing(kitchen, box).on(region)
 
 
 @dataclass
@@ -53,24 +69,33 @@ class Relations:
         return self.facts.get(relation, set())
 
 
-def supports_of(kitchen: KitchenScene, box: str) -> list[tuple[str, str]]:
-    """(kind, name) of everything ``box`` rests on now (at most one, unless the scene is odd)."""
-    found = []
+Support = tuple[str, str, SupportRegion]
+"""(kind, name, face) of something a box may rest on: a kind of ``RESTING_RELATIONS``."""
+
+
+def _supports(kitchen: KitchenScene) -> list[Support]:
+    """Every support of the scene now, held box excluded: surfaces, regions, openables, box tops."""
     kitchen_map = kitchen.map
     held = kitchen.held_box()
-    for surface in kitchen_map.surfaces:
-        if rests_on(kitchen, box, kitchen.surface_region(surface)):
-            found.append(("surface", surface))
-    for region in kitchen_map.regions:
-        if rests_on(kitchen, box, kitchen.region_region(region)):
-            found.append(("region", region))
-    for openable in kitchen_map.openables:
-        if rests_on(kitchen, box, kitchen.openable_region(openable)):
-            found.append(("openable", openable))
-    for other in kitchen.boxes:
-        if other not in (box, held) and rests_on(kitchen, box, kitchen.box_top(other)):
-            found.append(("box", other))
-    return found
+    return [
+        *(("surface", name, kitchen.surface_region(name)) for name in kitchen_map.surfaces),
+        *(("region", name, kitchen.region_region(name)) for name in kitchen_map.regions),
+        *(("openable", name, kitchen.openable_region(name)) for name in kitchen_map.openables),
+        *(("box", name, kitchen.box_top(name)) for name in kitchen.boxes if name != held),
+    ]
+
+
+def supports_of(
+    kitchen: KitchenScene, box: str, supports: list[Support] | None = None
+) -> list[tuple[str, str]]:
+    """(kind, name) of everything ``box`` rests on now (at most one, unless the scene is odd);
+    ``supports``: the scene's (``_supports``), when the caller has them already."""
+    footing = _footing(kitchen, box)
+    return [
+        (kind, name)
+        for kind, name, face in (supports if supports is not None else _supports(kitchen))
+        if not (kind == "box" and name == box) and footing.on(face)
+    ]
 
 
 def scene_relations(kitchen: KitchenScene) -> Relations:
@@ -83,10 +108,11 @@ def scene_relations(kitchen: KitchenScene) -> Relations:
     else:
         relations.add("holding", held)
     occupied: set[str] = set()
+    scene_supports = _supports(kitchen)  # one face per support, not one per box and support
     for box in kitchen.boxes:
         if box == held:
             continue
-        supports = supports_of(kitchen, box)
+        supports = supports_of(kitchen, box, scene_supports)
         on_region = {name for kind, name in supports if kind == "region"}
         region_surfaces = {kitchen_map.regions[name].surface for name in on_region}
         for kind, name in supports:

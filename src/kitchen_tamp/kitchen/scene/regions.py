@@ -80,8 +80,12 @@ def box_size(body: Body) -> tuple[float, float, float]:
     return shapes[0].size
 
 
+_CORNER_SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+"""The signs of the eight corners of a box centred on its origin (times its half size)."""
+
+
 def box_corners(world_from_box: Pose, size: tuple[float, float, float]) -> FloatArray:
     """The eight corners (8, 3) of a box in the world."""
     half = np.array(size) / 2.0
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
-    return np.array([world_from_box.apply(s * half) for s in signs])
+    rotation, translation = world_from_box.rotation, world_from_box.translation
+    return np.array([rotation @ (signs * half) + translation for signs in _CORNER_SIGNS])
