@@ -105,8 +105,13 @@ class Pose:
 
     @property
     def rotation(self) -> FloatArray:
-        """The 3x3 rotation matrix."""
-        return quaternion_to_matrix(self.quaternion)
+        """The 3x3 rotation matrix (read-only: computed once per pose, as poses are immutable)."""
+        rotation: FloatArray | None = self.__dict__.get("_rotation")
+        if rotation is None:
+            rotation = quaternion_to_matrix(self.quaternion)
+            rotation.flags.writeable = False
+            object.__setattr__(self, "_rotation", rotation)
+        return rotation
 
     @property
     def translation(self) -> FloatArray:
