@@ -98,8 +98,8 @@ def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int
                 -1.0 if budget.deadline is None else budget.deadline)
     outcome, goal_row, expanded, generated, evaluated, parents, actions = kernel(
         _bytes_of(task.initial_state, size), _bytes_of(task.goal, size), _bytes_of(task.goal_neg, size),
-        _successor_arrays(task, compiled), _exploration_arrays(compiled), _landmark_arrays(compiled, count, evaluator.landmark_preferred),
-        settings)
+        _successor_arrays(task, compiled), _exploration_arrays(compiled),
+        _landmark_arrays(compiled, count, evaluator.landmark_preferred), settings)
     counts = (int(expanded), int(generated), int(evaluated))
     if outcome == SOLVED:
         states = _plan_from(task, parents.tolist(), actions.tolist(), int(goal_row))
