@@ -78,7 +78,7 @@ def test_the_hand_over_in_mid_search_gives_the_same_search(kernel: str,
     assert _counts(handed_over) == _counts(python)
 
 
-@pytest.mark.parametrize("options", [{"landmarks": False}, {"novelty": False}])
+@pytest.mark.parametrize("options", [{"landmarks": False}, {"novelty": False}, {"landmark_preferred": False}])
 def test_the_kernel_follows_the_options(options: dict[str, bool], kernel: str,
                                         monkeypatch: pytest.MonkeyPatch) -> None:
     task = _load("sokoban", "task01.pddl")

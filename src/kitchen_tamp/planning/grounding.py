@@ -18,9 +18,9 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
 from itertools import product, repeat
 from operator import itemgetter, or_
+from typing import NamedTuple
 
 from kitchen_tamp.planning.schemas import ActionSchema, LiftedTask
 from kitchen_tamp.planning.task import GroundAction, Task, mask_of
@@ -35,9 +35,8 @@ Test = tuple[int, int, bool]
 """Slots ``a`` and ``b`` must hold the same object (True) or different objects (False)."""
 
 
-@dataclass(frozen=True, slots=True)
-class _Step:
-    """Matching one precondition literal against one fact's arguments.
+class _Step(NamedTuple):
+    """Matching one precondition literal against one fact's arguments (a named tuple, as ``_Trigger``).
 
     ``checks`` are (argument position, slot) pairs whose slot is already bound,
     ``assigns`` bind a slot for the first time, ``repeats`` compare with a slot
@@ -53,9 +52,11 @@ class _Step:
     lookup: tuple[int, int] | None
 
 
-@dataclass(frozen=True, slots=True)
-class _Trigger:
-    """How to complete a binding when a new fact matches precondition ``first``."""
+class _Trigger(NamedTuple):
+    """How to complete a binding when a new fact matches precondition ``first``.
+
+    Named tuples, not frozen dataclasses: creating a dataclass costs about a millisecond of every
+    planner process's start, and these records are private to the module."""
 
     schema: int
     first: _Step

@@ -108,8 +108,10 @@ kernels (``compiled_exploration``): about the Python work that costs as much as 
 class LandmarkEvaluator:
     """h_FF with helpful actions and the landmark count with its preferred operators, from one exploration."""
 
-    def __init__(self, exploration: RelaxedExploration, use_landmarks: bool = True) -> None:
+    def __init__(self, exploration: RelaxedExploration, use_landmarks: bool = True,
+                 landmark_preferred: bool = True) -> None:
         self.exploration = exploration
+        self.landmark_preferred = landmark_preferred
         task = exploration.task
         graph = landmark_graph(exploration, task.initial_state) if use_landmarks else None
         self.count = None if graph is None else LandmarkCount(exploration, graph)
@@ -169,10 +171,12 @@ class LandmarkEvaluator:
         if self.count is None:
             return Evaluation(float(len(plan)), 0.0, preferred, 0)
         h_landmarks, next_up = self.count.value(state, accepted)
-        achieving = self.count.achieving_actions(state, next_up)
-        if not achieving and next_up:
-            achieving = self._towards_nearest(state, next_up, cost, supporter)
-        return Evaluation(float(len(plan)), float(h_landmarks), preferred | achieving, accepted)
+        if self.landmark_preferred:
+            achieving = self.count.achieving_actions(state, next_up)
+            if not achieving and next_up:
+                achieving = self._towards_nearest(state, next_up, cost, supporter)
+            preferred |= achieving
+        return Evaluation(float(len(plan)), float(h_landmarks), preferred, accepted)
 
     def _evaluate_compiled(self, compiled: CompiledExploration, state: State, accepted: int) -> Evaluation:
         """``evaluate`` with the exploration and the relaxed plan compiled: the same values and operators."""
@@ -185,10 +189,12 @@ class LandmarkEvaluator:
             return Evaluation(float(length), 0.0, preferred, 0)
         assert self.compiled_count is not None
         h_landmarks, next_up = self.compiled_count.value(state_array, accepted)
-        achieving = compiled.achieving(state_array, next_up)
-        if not achieving and len(next_up):
-            achieving = compiled.helpful_towards_nearest(state_array, next_up)
-        return Evaluation(float(length), float(h_landmarks), preferred | achieving, accepted)
+        if self.landmark_preferred:
+            achieving = compiled.achieving(state_array, next_up)
+            if not achieving and len(next_up):
+                achieving = compiled.helpful_towards_nearest(state_array, next_up)
+            preferred |= achieving
+        return Evaluation(float(length), float(h_landmarks), preferred, accepted)
 
     def _towards_nearest(self, state: State, targets: int, cost: list[float], supporter: list[int]) -> int:
         """The applicable actions of the relaxed plan to the cheapest of ``targets`` (h_add costs)."""

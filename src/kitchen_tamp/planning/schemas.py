@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from kitchen_tamp.planning.reading.syntax import EQUALITY, ROOT_TYPE
 
@@ -89,9 +89,11 @@ def _type_ancestors(types: Mapping[str, str | None]) -> dict[str, frozenset[str]
     return result
 
 
-@dataclass(frozen=True, slots=True)
-class _LiftedAction:
-    """An action schema before a problem tells which objects its parameters may take."""
+class _LiftedAction(NamedTuple):
+    """An action schema before a problem tells which objects its parameters may take.
+
+    A named tuple, not a frozen dataclass: creating a dataclass costs about a millisecond of every
+    planner process's start, and this record is private to the module."""
 
     name: str
     parameters: tuple[str, ...]

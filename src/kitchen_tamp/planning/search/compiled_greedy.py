@@ -55,18 +55,18 @@ def _exploration_arrays(compiled: CompiledExploration) -> tuple[object, ...]:
             compiled.chosen, compiled.marked, compiled.marked_atoms, compiled.stack)
 
 
-def _landmark_arrays(compiled: CompiledExploration,
-                     count: CompiledLandmarkCount | None) -> tuple[object, ...]:
+def _landmark_arrays(compiled: CompiledExploration, count: CompiledLandmarkCount | None,
+                     landmark_preferred: bool) -> tuple[object, ...]:
     if count is None:  # the same types, empty: the kernel does not read them
         empty_rows = np.zeros((0, compiled.state_bytes), dtype=np.uint8)
         empty = np.zeros(0, dtype=np.int64)
         blank = np.zeros(compiled.state_bytes, dtype=np.uint8)
         return (False, empty, blank, empty_rows, empty_rows, blank.copy(), blank.copy(),
                 np.zeros(1, np.int64), compiled.achievers_start, compiled.achievers, compiled.neg_start,
-                compiled.negs, compiled.found)
+                compiled.negs, compiled.found, False)
     return (True, count.landmark_atoms, count.goal, count.natural, count.greedy_necessary, count.unaccepted,
             count.needed, count.targets, compiled.achievers_start, compiled.achievers, compiled.neg_start,
-            compiled.negs, compiled.found)
+            compiled.negs, compiled.found, landmark_preferred)
 
 
 def _plan_from(task: Task, parents: list[int], actions: list[int], goal_row: int) -> tuple[State, ...]:
@@ -98,8 +98,8 @@ def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int
                 -1.0 if budget.deadline is None else budget.deadline)
     outcome, goal_row, expanded, generated, evaluated, parents, actions = kernel(
         _bytes_of(task.initial_state, size), _bytes_of(task.goal, size), _bytes_of(task.goal_neg, size),
-        _successor_arrays(task, compiled), _exploration_arrays(compiled), _landmark_arrays(compiled, count),
-        settings)
+        _successor_arrays(task, compiled), _exploration_arrays(compiled),
+        _landmark_arrays(compiled, count, evaluator.landmark_preferred), settings)
     counts = (int(expanded), int(generated), int(evaluated))
     if outcome == SOLVED:
         states = _plan_from(task, parents.tolist(), actions.tolist(), int(goal_row))

@@ -172,11 +172,13 @@ def _evaluate(state, accepted, stamp, preferred_stamp, exploration, landmarks): 
     for index in range(applicable):
         preferred_stamp[helpful[index]] = stamp
     (used, landmark_atoms, goal_bytes, natural, greedy_necessary, unaccepted, needed, targets,
-     achievers_start, achievers, neg_start, negs, found) = landmarks
+     achievers_start, achievers, neg_start, negs, found, landmark_preferred) = landmarks
     if not used:
         return length, 0
     h_landmarks, count = landmark_count(state, accepted, landmark_atoms, goal_bytes, natural,
                                         greedy_necessary, unaccepted, needed, targets)
+    if not landmark_preferred:
+        return length, h_landmarks
     achieving = applicable_achievers(state, targets[:count], achievers_start, achievers, pre_start, pres,
                                      neg_start, negs, found)
     for index in range(achieving):
