@@ -22,7 +22,7 @@ from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
 from kitchen_tamp.refinement.planning_checkers import (
     DEFAULT_COLLISION_MODEL,
-    planning_checker,
+    PlanningCheckers,
     strict_checker,
 )
 
@@ -81,10 +81,17 @@ def refine_action(
     rng: np.random.Generator,
     planning_margin: float = PLANNING_MARGIN,
     collision_model: str = DEFAULT_COLLISION_MODEL,
+    checkers: PlanningCheckers | None = None,
 ) -> tuple[ActionTrajectory | None, ActionSampleRecord]:
     """One sample of ``action``: sample its skill's targets and connect the arm to them.
     On success the scene is left in the state after the action. Returns (trajectory or
-    None, record); resampling and stepping back are the caller's (SeSamE's) business."""
+    None, record); resampling and stepping back are the caller's (SeSamE's) business.
+    ``checkers`` (of ``collision_model``) builds the planning models, reusing those of a world
+    seen before; None: built for this sample alone."""
+    if checkers is None:
+        checkers = PlanningCheckers(collision_model)
+    elif checkers.model != collision_model:
+        raise ValueError(f"checkers of {checkers.model!r} given for collision model {collision_model!r}")
     clock = time.perf_counter()
     try:
         targets = sample_action_targets(kitchen, action, rng)
@@ -105,11 +112,11 @@ def refine_action(
         )
     skills_s = time.perf_counter() - clock
     start, clock = kitchen.arm_configuration(), time.perf_counter()
-    checker = planning_checker(kitchen, targets, planning_margin, collision_model)
+    checker = checkers.checker(kitchen, targets, planning_margin)
     margin = planning_margin
     if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
         # an end is closer than the margin: plan without slack
-        checker, margin = planning_checker(kitchen, targets, 0.0, collision_model), 0.0
+        checker, margin = checkers.checker(kitchen, targets, 0.0), 0.0
     strict = strict_checker(targets, checker)
     checkers_s = time.perf_counter() - clock
     solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
