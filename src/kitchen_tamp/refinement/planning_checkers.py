@@ -10,7 +10,7 @@ in front of Drake's (`kitchen_tamp.motion.geometry.spheres.screening`): what the
 find free is free (they cover the links), what they reject Drake decides, so
 verdicts are Drake's and most configurations never reach Drake. The same
 spheres, at the PyBullet checker's margin, screen the dense post-check of the
-planned path (`strict_checker`), whose verdicts are then PyBullet's.
+planned path (`PlanningCheckers.strict`), whose verdicts are then PyBullet's.
 
 A refinement run asks for a model of every move, and many moves see the same
 world (a skill resampled, a step tried again after backtracking, the arm
@@ -37,7 +37,6 @@ from kitchen_tamp.motion.collision_checker import (
     JointConfigurations,
     ValidityMask,
 )
-from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
 from kitchen_tamp.refinement.motion_backend import BoundedCollisionChecker
 from kitchen_tamp.world.scene_description import SceneDescription, describe_collision_checker
 
@@ -161,21 +160,26 @@ class PlanningCheckers:
             self._models.popitem(last=False)
         return built
 
+    def strict(self, targets: SkillTargets, planning: BoundedCollisionChecker) -> CollisionChecker:
+        """What a path planned with ``planning`` (one of this object's checkers) must be free
+        under: the skill's PyBullet checker, screened by the planning checker's spheres (at the
+        PyBullet checker's margin) when it plans with spheres, so that only configurations the
+        spheres reject are asked of PyBullet. Verdicts are PyBullet's."""
+        exact = targets.free_space_checker
+        if self.model != "spheres":
+            return exact
+        from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
+
+        if not isinstance(planning, SphereScreenedChecker):
+            raise TypeError(f"a sphere model's checker expected, got {type(planning).__name__}")
+        return SphereScreenedChecker(planning.spheres.with_margin(exact.margin), exact)
+
     def _build(self, description: SceneDescription, margin: float) -> BoundedCollisionChecker:
         if self.model == "drake":
             return DeferredDrakeChecker(description, margin).model
         # imported here: numba loads only when the sphere model is used
         from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+        from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
 
         spheres: SphereCollisionChecker = SphereCollisionChecker(description, margin=margin)
         return SphereScreenedChecker(spheres, DeferredDrakeChecker(description, margin), exact_is_bare=True)
-
-
-def strict_checker(targets: SkillTargets, planning: BoundedCollisionChecker) -> CollisionChecker:
-    """What a planned path must be free under: the skill's PyBullet checker, screened by the
-    planning checker's spheres (at the PyBullet checker's margin) when it plans with spheres,
-    so that only configurations the spheres reject are asked of PyBullet. Verdicts are PyBullet's."""
-    exact = targets.free_space_checker
-    if isinstance(planning, SphereScreenedChecker):
-        return SphereScreenedChecker(planning.spheres.with_margin(exact.margin), exact)
-    return exact

@@ -23,7 +23,6 @@ from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
 from kitchen_tamp.refinement.planning_checkers import (
     DEFAULT_COLLISION_MODEL,
     PlanningCheckers,
-    strict_checker,
 )
 
 PLANNING_MARGIN = 0.003
@@ -117,7 +116,7 @@ def refine_action(
     if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
         # an end is closer than the margin: plan without slack
         checker, margin = checkers.checker(kitchen, targets, 0.0), 0.0
-    strict = strict_checker(targets, checker)
+    strict = checkers.strict(targets, checker)
     checkers_s = time.perf_counter() - clock
     solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
