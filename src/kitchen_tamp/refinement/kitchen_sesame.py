@@ -112,8 +112,7 @@ class KitchenSampler:
         state.restore(self.kitchen)
         action = transition.action
         trajectory, record = refine_action(
-            self.kitchen, 0, action, self.backend, rng, collision_model=self.collision_model,
-            checkers=self.checkers,
+            self.kitchen, 0, action, self.backend, rng, checkers=self.checkers
         )
         self.last_record = record
         if trajectory is None:

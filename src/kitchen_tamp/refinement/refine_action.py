@@ -20,10 +20,7 @@ from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, replay_act
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
-from kitchen_tamp.refinement.planning_checkers import (
-    DEFAULT_COLLISION_MODEL,
-    PlanningCheckers,
-)
+from kitchen_tamp.refinement.planning_checkers import PlanningCheckers
 
 PLANNING_MARGIN = 0.003
 """Clearance (m) free-space moves keep while planned: paths are checked every 0.01 rad,
@@ -79,18 +76,16 @@ def refine_action(
     backend: MotionBackend,
     rng: np.random.Generator,
     planning_margin: float = PLANNING_MARGIN,
-    collision_model: str = DEFAULT_COLLISION_MODEL,
     checkers: PlanningCheckers | None = None,
 ) -> tuple[ActionTrajectory | None, ActionSampleRecord]:
     """One sample of ``action``: sample its skill's targets and connect the arm to them.
     On success the scene is left in the state after the action. Returns (trajectory or
     None, record); resampling and stepping back are the caller's (SeSamE's) business.
-    ``checkers`` (of ``collision_model``) builds the planning models, reusing those of a world
-    seen before; None: built for this sample alone."""
+    ``checkers`` builds the planning models (of its collision model), reusing those of a world
+    seen before; None: the default model's, built for this sample alone."""
     if checkers is None:
-        checkers = PlanningCheckers(collision_model)
-    elif checkers.model != collision_model:
-        raise ValueError(f"checkers of {checkers.model!r} given for collision model {collision_model!r}")
+        checkers = PlanningCheckers()
+    collision_model = checkers.model
     clock = time.perf_counter()
     try:
         targets = sample_action_targets(kitchen, action, rng)
