@@ -38,7 +38,7 @@ from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, GroundAction, State, Task
 from kitchen_tamp.refinement.failure_feedback import FailureFeedback
 from kitchen_tamp.refinement.motion_backend import MotionBackend
-from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL
+from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL, PlanningCheckers
 from kitchen_tamp.refinement.refine_action import ActionSampleRecord, RefinedKitchenPlan, refine_action
 from kitchen_tamp.world import SceneState
 
@@ -92,6 +92,11 @@ class KitchenSampler:
     records: dict[int, ActionSampleRecord] = field(default_factory=dict)
     """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
     last_record: ActionSampleRecord | None = None
+    checkers: PlanningCheckers = field(init=False)
+    """The planning collision models, built once per world the refinement meets."""
+
+    def __post_init__(self) -> None:
+        self.checkers = PlanningCheckers(self.collision_model)
 
     def atoms_of(self, state: KitchenState) -> frozenset[Atom]:
         """Ψ(x): the atoms true in the snapshot."""
@@ -107,7 +112,7 @@ class KitchenSampler:
         state.restore(self.kitchen)
         action = transition.action
         trajectory, record = refine_action(
-            self.kitchen, 0, action, self.backend, rng, collision_model=self.collision_model
+            self.kitchen, 0, action, self.backend, rng, checkers=self.checkers
         )
         self.last_record = record
         if trajectory is None:

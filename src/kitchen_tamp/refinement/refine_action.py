@@ -20,11 +20,7 @@ from kitchen_tamp.kitchen import KitchenScene, Segment, SkillFailure, replay_act
 from kitchen_tamp.kitchen.trajectory import FREE_SPACE_SEGMENT, ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction
 from kitchen_tamp.refinement.motion_backend import Figure, MotionBackend
-from kitchen_tamp.refinement.planning_checkers import (
-    DEFAULT_COLLISION_MODEL,
-    planning_checker,
-    strict_checker,
-)
+from kitchen_tamp.refinement.planning_checkers import PlanningCheckers
 
 PLANNING_MARGIN = 0.003
 """Clearance (m) free-space moves keep while planned: paths are checked every 0.01 rad,
@@ -80,11 +76,16 @@ def refine_action(
     backend: MotionBackend,
     rng: np.random.Generator,
     planning_margin: float = PLANNING_MARGIN,
-    collision_model: str = DEFAULT_COLLISION_MODEL,
+    checkers: PlanningCheckers | None = None,
 ) -> tuple[ActionTrajectory | None, ActionSampleRecord]:
     """One sample of ``action``: sample its skill's targets and connect the arm to them.
     On success the scene is left in the state after the action. Returns (trajectory or
-    None, record); resampling and stepping back are the caller's (SeSamE's) business."""
+    None, record); resampling and stepping back are the caller's (SeSamE's) business.
+    ``checkers`` builds the planning models (of its collision model), reusing those of a world
+    seen before; None: the default model's, built for this sample alone."""
+    if checkers is None:
+        checkers = PlanningCheckers()
+    collision_model = checkers.model
     clock = time.perf_counter()
     try:
         targets = sample_action_targets(kitchen, action, rng)
@@ -105,12 +106,12 @@ def refine_action(
         )
     skills_s = time.perf_counter() - clock
     start, clock = kitchen.arm_configuration(), time.perf_counter()
-    checker = planning_checker(kitchen, targets, planning_margin, collision_model)
+    checker = checkers.checker(kitchen, targets, planning_margin)
     margin = planning_margin
     if not checker.is_valid(np.stack([start, targets.goal_configuration])).all():
         # an end is closer than the margin: plan without slack
-        checker, margin = planning_checker(kitchen, targets, 0.0, collision_model), 0.0
-    strict = strict_checker(targets, checker)
+        checker, margin = checkers.checker(kitchen, targets, 0.0), 0.0
+    strict = checkers.strict(targets, checker)
     checkers_s = time.perf_counter() - clock
     solution = backend.solve(start, targets.goal_configuration, checker, strict, rng)
     motion = {**solution.figures, "collision_model": collision_model, "planning_margin_m": margin}
