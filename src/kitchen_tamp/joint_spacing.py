@@ -29,8 +29,20 @@ def interval_count(q0: npt.ArrayLike, q1: npt.ArrayLike, resolution: float) -> i
     """Number of equal intervals the straight move q0 -> q1 is cut into at ``resolution``."""
     if resolution <= 0.0:
         raise ValueError(f"resolution must be positive, got {resolution}")
-    step = np.asarray(q1, dtype=float) - np.asarray(q0, dtype=float)
-    return max(1, math.ceil(float(np.linalg.norm(step)) / resolution))
+    return max(1, math.ceil(joint_distance(q0, q1) / resolution))
+
+
+def joint_distance(q0: npt.ArrayLike, q1: npt.ArrayLike) -> float:
+    """Euclidean distance over the joints, summed joint by joint in order.
+
+    Not ``np.linalg.norm``: its sum goes through BLAS, whose order of additions depends on
+    the CPU's vector width, and a move whose length is a whole number of resolutions (an
+    RRT step is) would then be cut into one interval more on one machine than on another.
+    The compiled RRT-Connect loop sums the same way (``rrt_connect_kernel._distance``)."""
+    squared = 0.0
+    for d in (np.asarray(q1, dtype=float) - np.asarray(q0, dtype=float)).tolist():
+        squared += d * d
+    return math.sqrt(squared)
 
 
 def coarse_to_fine_order(count: int) -> npt.NDArray[np.intp]:

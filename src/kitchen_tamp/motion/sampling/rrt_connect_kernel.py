@@ -43,7 +43,7 @@ COUNTER_COUNT = 8
 
 @numba.njit(cache=True)
 def _interval_count(q0: FloatArray, q1: FloatArray, resolution: float) -> int:
-    """`kitchen_tamp.joint_spacing.interval_count`."""
+    """`kitchen_tamp.joint_spacing.interval_count` (the same sum as `joint_spacing.joint_distance`)."""
     return max(1, math.ceil(_distance(q0, q1) / resolution))
 
 
