@@ -26,7 +26,8 @@ from kitchen_tamp.motion.geometry.spheres.kernels.segments import (
     free_prefix_checked_in,
     segment_checked_in,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows, validity_scratch
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_scratch
 from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path

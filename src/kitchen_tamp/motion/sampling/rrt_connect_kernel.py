@@ -24,8 +24,11 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked_in, segment_checked_in
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import ValidityScratch, validity_scratch
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
+    ValidityArrays,
+    ValidityScratch,
+    validity_scratch,
+)
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

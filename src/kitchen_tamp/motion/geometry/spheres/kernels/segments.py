@@ -19,12 +19,12 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import (
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
+    ValidityArrays,
     ValidityScratch,
-    valid_rows,
     validity_scratch,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
 from kitchen_tamp.motion.segment_checking import FIRST_BATCH_SIZE
 
 FloatArray = npt.NDArray[np.float64]
