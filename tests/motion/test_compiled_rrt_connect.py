@@ -111,3 +111,31 @@ def test_the_compiled_loop_stops_at_its_iteration_limit(table: Any) -> None:
     result = plan_rrt_connect(start, goal, SPACE, spheres, hyperparameters, seed=1, time_budget_s=math.inf)
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.path is None and result.iterations == needed - 1 and result.nodes > 2
+
+
+def test_the_compiled_ends_and_straight_line_are_the_python_loops(table: Any) -> None:
+    """Ends in collision and a free straight line end the search before the loop, with the same
+    status, path and count as through the Python loop's segment checker."""
+    problem, spheres, _ = table
+    start, goal = problem.start, problem.goals[0]
+    rng = np.random.default_rng(0)
+    samples = SPACE.sample_uniform(rng, 400)
+    valid = spheres.is_valid(samples)
+    colliding = samples[~valid][0]
+    near_start = start + 0.05 * (samples[valid][0] - start)  # a short free step from the start
+    assert spheres.segment_valid(start, near_start)
+    cases = [
+        (colliding, goal, PlanStatus.START_IN_COLLISION),
+        (start, colliding, PlanStatus.GOAL_IN_COLLISION),
+        (start, near_start, PlanStatus.SOLVED),
+    ]
+    for q0, q1, status in cases:
+        compiled = plan_rrt_connect(q0, q1, SPACE, spheres, seed=0, time_budget_s=math.inf)
+        python = plan_rrt_connect(q0, q1, SPACE, PythonLoopSpheres(spheres), seed=0, time_budget_s=math.inf)
+        assert compiled.status is python.status is status
+        assert (compiled.iterations, compiled.nodes) == (python.iterations, python.nodes) == (0, 2)
+        assert compiled.collision_checks == python.collision_checks > 0
+        if status is PlanStatus.SOLVED:
+            np.testing.assert_array_equal(compiled.require_path(), np.stack([q0, q1]))
+        else:
+            assert compiled.path is None

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -20,11 +21,21 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     SHAPE_SPHERE,
     box_gap_at,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.segments import coarse_to_fine_fractions
+from kitchen_tamp.motion.geometry.spheres.kernels.segments import (
+    coarse_to_fine_fractions,
+    free_prefix_checked_in,
+    segment_checked_in,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_scratch
 from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
 
+VALID_ROWS: Any = valid_rows
+"""The compiled kernels, untyped for mypy (numba's dispatcher stubs take no argument list)."""
+SEGMENT_IN: Any = segment_checked_in
+FREE_PREFIX_IN: Any = free_prefix_checked_in
 SELF_PAIRS = (("panda_hand", "panda_link0"), ("panda_link0", "panda_link5"), ("panda_link1", "panda_link7"))
 
 
@@ -171,3 +182,31 @@ def test_compiled_fractions_are_the_joint_spacing_rule() -> None:
         start, end = np.zeros(1), np.array([length])
         intervals = interval_count(start, end, 0.01)
         assert np.array_equal(coarse_to_fine_fractions(intervals), interior_fractions(start, end, 0.01))
+
+
+def test_one_scratch_serves_many_calls_with_each_calls_verdicts(
+    models: tuple[SphereCollisionChecker, DrakeCollisionChecker],
+) -> None:
+    """The kernels working in one `validity_scratch` over many batches and segments (as the
+    compiled RRT-Connect loop does) give every call the verdicts of a fresh call, and the batches
+    the numpy reference's."""
+    spheres, _ = models
+    arrays, margin = spheres.compiled_validity()
+    rng = np.random.default_rng(3)
+    scratch = validity_scratch(arrays, 7)
+    for size in [1, 2, 5, 1, 17, 3, 1, 40, 1, 8] * 5:
+        qs = rng.uniform(spheres.lower, spheres.upper, size=(size, 7))
+        reused = VALID_ROWS(qs, arrays, margin, False, scratch)
+        assert np.array_equal(reused, spheres.is_valid(qs))
+        assert np.array_equal(reused, spheres.is_valid_uncompiled(qs))
+    for _ in range(60):
+        q0, q1 = rng.uniform(spheres.lower, spheres.upper, size=(2, 7))
+        q1 = q0 + (q1 - q0) * rng.uniform(0.0, 0.6)
+        intervals = interval_count(q0, q1, 0.01)
+        assert SEGMENT_IN(q0, q1, intervals, True, True, arrays, margin, scratch) == spheres.segment_checked(
+            q0, q1, intervals, True, True
+        )
+        distance = float(np.linalg.norm(q1 - q0))
+        assert FREE_PREFIX_IN(q0, q1, distance, 0.01, arrays, margin, scratch) == spheres.free_prefix_checked(
+            q0, q1, distance, 0.01
+        )

@@ -10,13 +10,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
+from kitchen_tamp.joint_spacing import interval_count
 from kitchen_tamp.motion.collision_checker import JointConfiguration
 from kitchen_tamp.motion.configuration_space import UniformSamples
+from kitchen_tamp.motion.geometry.spheres.kernels.segments import segment_checked
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.planning_result import PlanningResult, PlanStatus
 from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
@@ -31,6 +34,8 @@ from kitchen_tamp.motion.sampling.rrt_connect_kernel import (
 
 _ITERATIONS: Any = rrt_connect_iterations
 """The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
+_VALID_CONFIGURATIONS: Any = valid_configurations
+_SEGMENT_CHECKED: Any = segment_checked
 
 INITIAL_CAPACITY = 1024
 """Rows of each tree's arrays at first; they double when a block of iterations might not fit."""
@@ -156,3 +161,28 @@ def run_compiled_loop(
     path = trees.joined_path() if status is PlanStatus.SOLVED else None
     iterations, checks = int(counters[COUNTER_ITERATIONS]), int(counters[COUNTER_CHECKS])
     return LoopOutcome(status, path, iterations, trees.node_count, checks)
+
+
+def plan_compiled(
+    start: JointConfiguration,
+    goal: JointConfiguration,
+    samples: UniformSamples,
+    compiled: tuple[Any, float],
+    settings: LoopSettings,
+) -> LoopOutcome:
+    """`plan_rrt_connect` with the sphere model's compiled validity ``compiled``: the ends checked
+    (START_ or GOAL_IN_COLLISION), then the straight line between them (SOLVED with the two
+    ends), then `run_compiled_loop`; the same checks, counted alike, as through a
+    `CountingSegmentChecker` of the checker, without its Python layers."""
+    arrays, margin = compiled
+    ends = np.stack([start, goal])
+    start_valid, goal_valid = _VALID_CONFIGURATIONS(ends, arrays, margin, False)
+    if not (start_valid and goal_valid):
+        status = PlanStatus.START_IN_COLLISION if not start_valid else PlanStatus.GOAL_IN_COLLISION
+        return LoopOutcome(status, None, 0, 2, len(ends))
+    intervals = interval_count(start, goal, settings.resolution)
+    free, checked = _SEGMENT_CHECKED(start, goal, intervals, False, False, arrays, margin)
+    if free:
+        return LoopOutcome(PlanStatus.SOLVED, ends, 0, 2, len(ends) + int(checked))
+    outcome = run_compiled_loop(start, goal, samples, compiled, settings)
+    return replace(outcome, collision_checks=len(ends) + int(checked) + outcome.collision_checks)

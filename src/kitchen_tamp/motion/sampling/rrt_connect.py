@@ -124,9 +124,10 @@ def plan_rrt_connect(
     """Bidirectional RRT: extend one tree toward a sample, connect the other to the new node.
 
     With the sphere model as the checker (a `CompiledValidity` that answers), the loop runs
-    compiled (`compiled_rrt_connect`): the same search from the same samples, without Python
-    between the segment checks. Raises `InvalidMotionQueryError` for a malformed or out-of-bounds
-    start/goal; a start or goal in collision is reported by the result's status.
+    compiled (`compiled_rrt_connect`, the ends and the straight line too): the same search from the
+    same samples, without Python between the segment checks. Raises `InvalidMotionQueryError` for
+    a malformed or out-of-bounds start/goal; a start or goal in collision is reported by the
+    result's status.
     """
     params = hyperparameters or RrtConnectHyperparameters()
     clock = params.clock
@@ -135,6 +136,20 @@ def plan_rrt_connect(
     q_start = space.validated(start, "start")
     q_goal = space.validated(goal, "goal")
     samples = UniformSamples(space, np.random.default_rng(seed))
+    compiled = checker.compiled_validity() if isinstance(checker, CompiledValidity) else None
+    if compiled is not None:
+        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, plan_compiled
+
+        settings = LoopSettings(
+            params.step_size,
+            params.edge_resolution,
+            params.max_iterations,
+            params.tree_balance,
+            deadline,
+            clock,
+        )
+        outcome = plan_compiled(q_start, q_goal, samples, compiled, settings)
+        return outcome.result(0, clock() - clock_start)
     segments = CountingSegmentChecker(checker, params.edge_resolution)
     start_tree, goal_tree = ConfigurationTree(q_start), ConfigurationTree(q_goal)
 
@@ -154,20 +169,6 @@ def plan_rrt_connect(
     if segments.segment_valid(q_start, q_goal, check_start=False, check_end=False):
         return finish(PlanStatus.SOLVED, 0, np.stack([q_start, q_goal]))
 
-    compiled = checker.compiled_validity() if isinstance(checker, CompiledValidity) else None
-    if compiled is not None:
-        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
-
-        settings = LoopSettings(
-            params.step_size,
-            params.edge_resolution,
-            params.max_iterations,
-            params.tree_balance,
-            deadline,
-            clock,
-        )
-        outcome = run_compiled_loop(q_start, q_goal, samples, compiled, settings)
-        return outcome.result(segments.configurations_checked, clock() - clock_start)
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
         if clock() >= deadline:

@@ -4,9 +4,10 @@ The same search as `kitchen_tamp.motion.sampling.rrt_connect`, step for step: ex
 tree one step toward a sample, connect the other tree to the new node, swap. Nearest nodes are
 found over the trees' arrays (each node's squared norm kept beside it), and every segment is
 checked by the sphere model's compiled segment kernels (`sphere_segments`) on its
-`ValidityArrays`, with no Python between them. Samples come from the caller, a block at a time
-(drawn by numpy from the seeded generator, the same stream the Python loop draws), so the same
-seed gives the same search.
+`ValidityArrays`, with no Python between them, in one `validity_scratch` per call (a failed step
+is often one configuration, which costs less than allocating the kernel's buffers). Samples come
+from the caller, a block at a time (drawn by numpy from the seeded generator, the same stream the
+Python loop draws), so the same seed gives the same search.
 
 The trees live in arrays the caller owns and passes back in each call: ``nodes`` (2, capacity, d),
 ``parents`` (2, capacity), ``squared_norms`` (2, capacity), and ``counters`` (see the ``COUNTER_``
@@ -22,8 +23,12 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked, segment_checked
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked_in, segment_checked_in
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
+    ValidityArrays,
+    ValidityScratch,
+    validity_scratch,
+)
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -102,6 +107,7 @@ def _extend(
     counters: IntArray,
     arrays: ValidityArrays,
     margin: float,
+    scratch: ValidityScratch,
 ) -> int:
     """One step from the nearest node toward ``target`` (`rrt_connect.extend_tree`): the new node's
     index, or -1 when the step collides."""
@@ -110,7 +116,7 @@ def _extend(
     distance = _distance(q_near, target)
     q_new = target.copy() if distance <= step_size else q_near + (target - q_near) * (step_size / distance)
     intervals = _interval_count(q_near, q_new, resolution)
-    free, checked = segment_checked(q_near, q_new, intervals, False, True, arrays, margin)
+    free, checked = segment_checked_in(q_near, q_new, intervals, False, True, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return -1
@@ -129,6 +135,7 @@ def _connect(
     counters: IntArray,
     arrays: ValidityArrays,
     margin: float,
+    scratch: ValidityScratch,
 ) -> tuple[int, bool]:
     """Steps from the nearest node toward ``target`` until it is reached or a step collides
     (`rrt_connect.connect_tree`): the last node's index and whether it is ``target``."""
@@ -137,7 +144,9 @@ def _connect(
     distance = _distance(q_near, target)
     if distance == 0.0:
         return near, True
-    free_length, checked = free_prefix_checked(q_near, target, distance, resolution, arrays, margin)
+    free_length, checked = free_prefix_checked_in(
+        q_near, target, distance, resolution, arrays, margin, scratch
+    )
     counters[COUNTER_CHECKS] += checked
     reached = free_length >= distance
     resolutions_per_step = max(1, round(step_size / resolution))
@@ -154,7 +163,7 @@ def _connect(
         return index, False
     last = nodes[tree, index].copy()
     intervals = _interval_count(last, target, resolution)
-    free, checked = segment_checked(last, target, intervals, False, False, arrays, margin)
+    free, checked = segment_checked_in(last, target, intervals, False, False, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return index, False
@@ -181,6 +190,7 @@ def rrt_connect_iterations(
     ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
     ``tree_balance`` a tree more than that many times the other's size waits its turn."""
     capacity = nodes.shape[1]
+    scratch = validity_scratch(arrays, nodes.shape[2])  # the validity kernel's buffers, for every check
     used = 0
     for row in range(samples.shape[0]):
         if counters[COUNTER_ITERATIONS] >= max_iterations:
@@ -193,7 +203,17 @@ def rrt_connect_iterations(
         other = 1 - growing
         target = samples[row]
         new = _extend(
-            growing, target, step_size, resolution, nodes, parents, squared_norms, counters, arrays, margin
+            growing,
+            target,
+            step_size,
+            resolution,
+            nodes,
+            parents,
+            squared_norms,
+            counters,
+            arrays,
+            margin,
+            scratch,
         )
         if new >= 0:
             reached_target = nodes[growing, new].copy()
@@ -208,6 +228,7 @@ def rrt_connect_iterations(
                 counters,
                 arrays,
                 margin,
+                scratch,
             )
             if reached:
                 counters[COUNTER_JOINED] = 1

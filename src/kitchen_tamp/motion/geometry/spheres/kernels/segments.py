@@ -7,6 +7,10 @@ return its verdict and the count it would report (the rows of its batches, which
 ``FIRST_BATCH_SIZE`` and double, up to the batch holding the first collision). They differ only
 in cost: one call instead of a Python loop of batches, and the validity kernel stops at the first
 invalid row. Configurations are interpolated without fastmath, so they are numpy's to the bit.
+
+A caller checking many segments in compiled code (the compiled RRT-Connect loop) keeps one
+`validity_scratch` and calls `segment_checked_in` and `free_prefix_checked_in`, which work in it
+instead of allocating the validity kernel's buffers per segment.
 """
 
 from __future__ import annotations
@@ -15,8 +19,12 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
+    ValidityArrays,
+    ValidityScratch,
+    validity_scratch,
+)
 from kitchen_tamp.motion.segment_checking import FIRST_BATCH_SIZE
 
 FloatArray = npt.NDArray[np.float64]
@@ -36,24 +44,27 @@ def rows_through(count: int, first: int) -> int:
 @numba.njit(cache=True)
 def coarse_to_fine_fractions(intervals: int) -> FloatArray:
     """`kitchen_tamp.joint_spacing.interior_fractions` for ``intervals`` intervals: the interior
-    positions 1 .. intervals - 1 ordered by their lowest set bit, highest first (stable)."""
+    positions 1 .. intervals - 1 ordered by their lowest set bit, highest first, ascending within
+    one bit (the odd multiples of each power of two, the largest power first)."""
     count = intervals - 1
-    keys = np.empty(count, dtype=np.int64)
-    for i in range(count):
-        position = i + 1
-        keys[i] = -(position & -position)
-    order = np.argsort(keys, kind="mergesort")
-    fractions = np.empty(count)
-    for i in range(count):
-        fractions[i] = (order[i] + 1) / intervals
+    fractions = np.empty(max(count, 0))
+    bit = 1
+    while 2 * bit <= count:
+        bit *= 2
+    row = 0
+    while bit >= 1:
+        for position in range(bit, count + 1, 2 * bit):
+            fractions[row] = position / intervals
+            row += 1
+        bit //= 2
     return fractions
 
 
 @numba.njit(cache=True)
-def _first_invalid(qs: FloatArray, arrays: ValidityArrays, margin: float) -> int:
+def _first_invalid(qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch) -> int:
     if qs.shape[0] == 0:
         return -1
-    valid = valid_configurations(qs, arrays, margin, True)
+    valid = valid_rows(qs, arrays, margin, True, scratch)
     for m in range(qs.shape[0]):
         if not valid[m]:
             return m
@@ -61,7 +72,7 @@ def _first_invalid(qs: FloatArray, arrays: ValidityArrays, margin: float) -> int
 
 
 @numba.njit(cache=True)
-def segment_checked(
+def segment_checked_in(
     q0: FloatArray,
     q1: FloatArray,
     intervals: int,
@@ -69,9 +80,9 @@ def segment_checked(
     check_end: bool,
     arrays: ValidityArrays,
     margin: float,
+    scratch: ValidityScratch,
 ) -> tuple[bool, int]:
-    """(whether q0 -> q1 is valid at ``intervals`` intervals, configurations counted): the
-    endpoints asked for first, then the interior coarse to fine."""
+    """`segment_checked`, working in ``scratch`` (`validity_scratch` of ``arrays``)."""
     ends = int(check_start) + int(check_end)
     fractions = coarse_to_fine_fractions(intervals)
     dimension = q0.shape[0]
@@ -86,7 +97,7 @@ def segment_checked(
     for i in range(fractions.shape[0]):
         for j in range(dimension):
             qs[ends + i, j] = q0[j] + fractions[i] * (q1[j] - q0[j])
-    first = _first_invalid(qs, arrays, margin)
+    first = _first_invalid(qs, arrays, margin, scratch)
     if 0 <= first < ends:
         return False, ends
     inner = first - ends if first >= 0 else -1
@@ -94,11 +105,32 @@ def segment_checked(
 
 
 @numba.njit(cache=True)
-def free_prefix_checked(
-    q0: FloatArray, q1: FloatArray, distance: float, resolution: float, arrays: ValidityArrays, margin: float
+def segment_checked(
+    q0: FloatArray,
+    q1: FloatArray,
+    intervals: int,
+    check_start: bool,
+    check_end: bool,
+    arrays: ValidityArrays,
+    margin: float,
+) -> tuple[bool, int]:
+    """(whether q0 -> q1 is valid at ``intervals`` intervals, configurations counted): the
+    endpoints asked for first, then the interior coarse to fine."""
+    scratch = validity_scratch(arrays, q0.shape[0])
+    return segment_checked_in(q0, q1, intervals, check_start, check_end, arrays, margin, scratch)
+
+
+@numba.njit(cache=True)
+def free_prefix_checked_in(
+    q0: FloatArray,
+    q1: FloatArray,
+    distance: float,
+    resolution: float,
+    arrays: ValidityArrays,
+    margin: float,
+    scratch: ValidityScratch,
 ) -> tuple[float, int]:
-    """(how far from q0 toward q1 is free before the first collision, configurations counted):
-    configurations at every multiple of ``resolution`` from q0, then q1 (``distance`` away)."""
+    """`free_prefix_checked`, working in ``scratch`` (`validity_scratch` of ``arrays``)."""
     steps = int(np.ceil(distance / resolution))
     count = max(steps - 1, 0) + 1
     lengths = np.empty(count)
@@ -111,8 +143,18 @@ def free_prefix_checked(
         share = lengths[i] / distance
         for j in range(dimension):
             qs[i, j] = q0[j] + share * (q1[j] - q0[j])
-    first = _first_invalid(qs, arrays, margin)
+    first = _first_invalid(qs, arrays, margin, scratch)
     checked = rows_through(count, first)
     if first < 0:
         return distance, checked
     return (lengths[first - 1] if first > 0 else 0.0), checked
+
+
+@numba.njit(cache=True)
+def free_prefix_checked(
+    q0: FloatArray, q1: FloatArray, distance: float, resolution: float, arrays: ValidityArrays, margin: float
+) -> tuple[float, int]:
+    """(how far from q0 toward q1 is free before the first collision, configurations counted):
+    configurations at every multiple of ``resolution`` from q0, then q1 (``distance`` away)."""
+    scratch = validity_scratch(arrays, q0.shape[0])
+    return free_prefix_checked_in(q0, q1, distance, resolution, arrays, margin, scratch)

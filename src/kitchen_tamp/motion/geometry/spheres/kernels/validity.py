@@ -44,14 +44,17 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     prefetch,
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import (
-    STACK_DEPTH,
     place_span_once,
     span_near_bound,
     spans_touch,
     tree_hits_box,
     trees_touch,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
+    ValidityArrays,
+    ValidityScratch,
+    validity_scratch,
+)
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -101,12 +104,25 @@ def _table_cell(
     return index
 
 
-@numba.njit(cache=True, fastmath=True)
+@numba.njit(cache=True)
 def valid_configurations(
     qs: FloatArray,
     arrays: ValidityArrays,
     margin: float,
     stop_at_invalid: bool,
+) -> npt.NDArray[np.bool_]:
+    """`valid_rows` with buffers of its own (a caller checking many batches keeps one
+    `validity_scratch` and calls `valid_rows`)."""
+    return valid_rows(qs, arrays, margin, stop_at_invalid, validity_scratch(arrays, qs.shape[1]))
+
+
+@numba.njit(cache=True, fastmath=True)
+def valid_rows(
+    qs: FloatArray,
+    arrays: ValidityArrays,
+    margin: float,
+    stop_at_invalid: bool,
+    scratch: ValidityScratch,
 ) -> npt.NDArray[np.bool_]:
     """Per row of ``qs``: within limits and no checked pair of fine spheres closer than ``margin``;
     ``arrays`` holds the model (`sphere_validity_arrays.ValidityArrays`, fields as named below).
@@ -123,7 +139,8 @@ def valid_configurations(
     invalid before any kinematics (when ``margin`` is no smaller than the tables' ``table_margin``),
     and a pair it proves clear is skipped (when ``margin`` is no larger).
 
-    With ``stop_at_invalid`` the rows after the first invalid one are not checked (left True)."""
+    With ``stop_at_invalid`` the rows after the first invalid one are not checked (left True).
+    ``scratch`` (`validity_scratch` of the same ``arrays``) is worked in and its stamp advanced."""
     # One argument in, its arrays out once per call (numba counts a reference per field read).
     lower = arrays.lower
     upper = arrays.upper
@@ -168,27 +185,33 @@ def valid_configurations(
     count = qs.shape[0]
     groups, boxes = group_radii.shape[0], box_halves.shape[0]
     clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
-    pair_state = np.zeros(group_pairs.shape[0], dtype=np.int8)
+    (
+        pair_state,
+        poses,
+        frame,
+        sines,
+        cosines,
+        group_world,
+        coarse_world,
+        coarse_placed,
+        fine_world,
+        leaf_placed,
+        node_world,
+        node_placed,
+        stack,
+        cells,
+        last_stamp,
+    ) = scratch
     valid = np.ones(count, dtype=np.bool_)
-    poses = np.empty((parents.shape[0], 3, 4))
-    frame = np.empty((3, 4))
-    sines, cosines = np.empty(qs.shape[1]), np.empty(qs.shape[1])
-    group_world = np.empty((groups, 3))
-    coarse_world = np.empty((3, sphere_radii.shape[0]))
-    coarse_placed = np.zeros(groups, dtype=np.int64)
-    fine_world = np.empty((3, fine_radii.shape[0]))
-    leaf_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
-    node_world = np.empty((node_radii.shape[0], 3))
-    node_placed = np.zeros(node_radii.shape[0], dtype=np.int64)
-    stack = np.empty(2 * STACK_DEPTH, dtype=np.int64)
     ordered = group_order.shape[0]
     tolerance = 1e-9
     tables = table_offsets.shape[0]
-    cells = np.empty((2, tables), dtype=np.int64)
+    first_stamp = last_stamp[0] + 1
+    last_stamp[0] += count  # every stamp this call may use, taken now (a stamp marks one row)
     for m in range(count):
         if stop_at_invalid and m > 0 and not valid[m - 1]:
             break  # the rows after the first invalid one are left unchecked (True)
-        stamp = m + 1
+        stamp = first_stamp + m
         # Table cells are far apart in memory, so each lookup would wait on memory: the next row's
         # cells are computed and fetched ahead while this row is checked.
         for ahead in range(m + 1 if m > 0 else 0, min(m + 2, count)):

@@ -23,6 +23,8 @@ import numpy.typing as npt
 from numba.core import types
 from numba.experimental import structref
 
+from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import STACK_DEPTH
+
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
@@ -136,3 +138,33 @@ def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
     derived = _derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True)))
     packed: ValidityArrays = _pack((*arguments, *derived))
     return packed
+
+
+ValidityScratch = tuple[Any, ...]
+"""What `valid_rows` works in (`validity_scratch`): per-configuration buffers, the stamps saying
+when a bound or sphere was last placed, and the last stamp used, so it may serve many calls."""
+
+@numba.njit(cache=True)
+def validity_scratch(arrays: ValidityArrays, dimension: int) -> ValidityScratch:
+    """Buffers for `valid_rows` on ``arrays``' model with configurations of ``dimension`` joints:
+    allocated once, they serve every call a caller makes (a call on one configuration otherwise
+    spends more on allocating them than on the check)."""
+    nodes = arrays.node_radii.shape[0]
+    groups = arrays.group_radii.shape[0]
+    return (
+        np.zeros(arrays.group_pairs.shape[0], dtype=np.int8),
+        np.empty((arrays.parents.shape[0], 3, 4)),
+        np.empty((3, 4)),
+        np.empty(dimension),
+        np.empty(dimension),
+        np.empty((groups, 3)),
+        np.empty((3, arrays.sphere_radii.shape[0])),
+        np.zeros(groups, dtype=np.int64),
+        np.empty((3, arrays.fine_radii.shape[0])),
+        np.zeros(nodes, dtype=np.int64),
+        np.empty((nodes, 3)),
+        np.zeros(nodes, dtype=np.int64),
+        np.empty(2 * STACK_DEPTH, dtype=np.int64),
+        np.empty((2, arrays.table_offsets.shape[0]), dtype=np.int64),
+        np.zeros(1, dtype=np.int64),
+    )
