@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import numpy as np
+import pybullet as p
 import pytest
 
 from kitchen_tamp.world import (
     AllowedContact,
     InverseKinematics,
+    KeptClearance,
     Pose,
     Robot,
     Scene,
@@ -142,3 +144,30 @@ def test_segment_valid_between_free_configurations(
     nearby[0] += 0.2
     checker = make_collision_checker(scene, robot)
     assert checker.segment_valid(free, nearby, resolution_rad=resolution)
+
+
+def test_a_kept_clearance_holds_only_for_its_body(panda_scene: tuple[Scene, Robot]) -> None:
+    """A box set beside the hand a measured few millimetres away: a kept clearance larger
+    than the gap makes the configuration collide (naming the box), a smaller one does not,
+    one kept from another body changes nothing, and an intended contact overrides it."""
+    scene, robot = panda_scene
+    free, _ = above_and_inside_counter(scene, robot)
+    robot.set_configuration(free)
+    box = scene.body("sugar")
+    height = box.box_shapes("sugar")[0].size[2]
+    box.reset_base_pose(robot.tool_pose().translated((0.0, 0.0, -0.5 * height - 0.02)))
+    closest = p.getClosestPoints(robot.body.uid, box.uid, 0.1, physicsClientId=box.client)
+    gap = min(float(point[8]) for point in closest)
+    assert 0.003 < gap < 0.05
+    wider = make_collision_checker(scene, robot, kept=[KeptClearance("sugar", gap + 0.002)])
+    narrower = make_collision_checker(scene, robot, kept=[KeptClearance("sugar", gap - 0.002)])
+    elsewhere = make_collision_checker(
+        scene, robot, kept=[KeptClearance("kitchen", 0.0), KeptClearance("none", 1.0)]
+    )
+    assert not wider.is_valid(free)[0]
+    assert any(other.startswith("sugar/") for _, other in wider.colliding_pairs(free))
+    assert narrower.is_valid(free)[0] and elsewhere.is_valid(free)[0]
+    touching = make_collision_checker(
+        scene, robot, [AllowedContact("sugar")], kept=[KeptClearance("sugar", 1.0)]
+    )
+    assert touching.is_valid(free)[0]

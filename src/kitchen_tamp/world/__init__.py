@@ -26,6 +26,7 @@ from kitchen_tamp.world.camera import (
 from kitchen_tamp.world.collision import (
     AllowedContact,
     BoolArray,
+    KeptClearance,
     PyBulletCollisionChecker,
     make_collision_checker,
 )
@@ -60,6 +61,7 @@ __all__ = [
     "Image",
     "InverseKinematics",
     "JointInfo",
+    "KeptClearance",
     "LinkVisibility",
     "PixelWindow",
     "Pose",

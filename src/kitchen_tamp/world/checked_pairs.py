@@ -13,7 +13,10 @@ the gripper on the handle being pulled, a box on its support) does not remove
 a pair: it lets the pair touch down to ``max_penetration``; deeper is a
 collision. Clearance margins do not apply to such a pair, and clearances leave
 it out while it is within its bound (counting it as ``distance +
-max_penetration`` when deeper). ``CheckedPairs.policy()`` gives the same table as plain data
+max_penetration`` when deeper). A kept clearance (``KeptClearance``) is the other way
+round: the robot and what it carries must stay that far from a body (a box beside the
+one the hand works on), whatever the query margin; its pairs carry the clearance as a
+negative allowance. ``CheckedPairs.policy()`` gives the same table as plain data
 (``CheckedLinkPair`` by body and link names), which is what other collision
 models (Drake's, in ``motion``) check, so the pairs are decided here only.
 
@@ -87,6 +90,20 @@ class AllowedContact:
 
 
 @dataclass(frozen=True)
+class KeptClearance:
+    """The robot and what it carries keep at least ``clearance`` (m) from ``body`` (unless an
+    intended contact covers the pair).
+
+    Used by the skills' straight moves near the boxes beside the one they work on: a
+    plan that passes a neighbour within a fraction of a millimetre is touched under
+    physics, where the hand lags the plan and contacts start before shapes meet.
+    """
+
+    body: str
+    clearance: float
+
+
+@dataclass(frozen=True)
 class CheckedLinkPair:
     """One checked pair by names: a collision when closer than the query margin less ``allowance``."""
 
@@ -95,7 +112,8 @@ class CheckedLinkPair:
     body_b: str
     link_b: str
     allowance: float = 0.0
-    """Penetration (m) tolerated: an intended contact's bound, 0 for every other pair."""
+    """Penetration (m) tolerated: an intended contact's bound; negative, a kept clearance
+    (the pair collides closer than that); 0 for every other pair."""
 
 
 def _ancestry(body: Body, link: int) -> list[tuple[int, bool]]:
@@ -164,9 +182,11 @@ class CheckedPairs:
         carried: Sequence[Attachment],
         allowed: Iterable[AllowedContact] = (),
         riding: Sequence[Attachment] = (),
+        kept: Iterable[KeptClearance] = (),
     ) -> None:
         self.robot = robot
         self.allowed: tuple[AllowedContact, ...] = tuple(allowed)
+        self.kept: tuple[KeptClearance, ...] = tuple(kept)
         self._client = robot.body.client
         body = robot.body
         moving, self_pairs = _robot_link_sets(body, robot.description.arm_joints[0])
@@ -192,7 +212,10 @@ class CheckedPairs:
         self.pairs: tuple[LinkPair, ...] = tuple((a, i, b, j) for a, i, b, j, _ in pairs)
         self.pair_ids: list[tuple[int, int, int, int]] = [(a.uid, i, b.uid, j) for a, i, b, j, _ in pairs]
         self.allowances: FloatArray = np.array([allowance for *_, allowance in pairs], dtype=float)
-        """Per pair, the penetration (m) it may reach before it counts as a collision."""
+        """Per pair, the penetration (m) it may reach before it counts as a collision (negative:
+        the clearance it must keep)."""
+        self.kept_horizon = max(0.0, -float(self.allowances.min(initial=0.0)))
+        """The largest kept clearance (m): a check must measure pairs at least this far apart."""
         # Bounds are a flat table of (low xyz, high xyz) rows. Per pair and axis,
         # low_a - high_b and low_b - high_a: the largest of the six is the gap.
         row_of = {(b.name, i): r for r, (b, i) in enumerate(moving_rows + static_rows)}
@@ -205,14 +228,18 @@ class CheckedPairs:
     def _robot_allowance(self, robot_link: int, other: Body, other_link: int) -> float:
         robot_name, other_name = self.robot.body.link_name(robot_link), other.link_name(other_link)
         bounds = [a.max_penetration for a in self.allowed if a.allows(robot_name, other.name, other_name)]
-        return max(bounds, default=0.0)
+        return max(bounds) if bounds else self._kept_allowance(other)
 
     def _carried_allowance(self, carried: Body, other: Body, other_link: int) -> float:
         other_name = other.link_name(other_link)
         bounds = [
             a.max_penetration for a in self.allowed if a.allows_carried(carried.name, other.name, other_name)
         ]
-        return max(bounds, default=0.0)
+        return max(bounds) if bounds else self._kept_allowance(other)
+
+    def _kept_allowance(self, other: Body) -> float:
+        """Minus the largest clearance kept from ``other`` (0 when none is)."""
+        return -max((k.clearance for k in self.kept if k.body == other.name), default=0.0)
 
     def policy(self) -> tuple[CheckedLinkPair, ...]:
         """The pair table as plain data (names), for other collision models."""
@@ -252,16 +279,17 @@ def checked_pairs_of(
     carried: Sequence[Attachment],
     allowed: Sequence[AllowedContact] = (),
     riding: Sequence[Attachment] = (),
+    kept: Sequence[KeptClearance] = (),
 ) -> CheckedPairs:
-    """``CheckedPairs(robot, obstacles, carried, allowed, riding)``, made once for the same bodies,
-    contacts and rides: a table reads of an attachment only which bodies and link it joins, and
-    nothing of it changes once made, while the skills and the judges make a checker per sample
-    and per run of states, mostly of the same scene."""
+    """``CheckedPairs(robot, obstacles, carried, allowed, riding, kept)``, made once for the same
+    bodies, contacts, rides and clearances: a table reads of an attachment only which bodies
+    and link it joins, and nothing of it changes once made, while the skills and the judges
+    make a checker per sample and per run of states, mostly of the same scene."""
     key = (robot, tuple(obstacles), tuple(a.child for a in carried), tuple(allowed),
-           tuple((r.parent, r.parent_link, r.child) for r in riding))
+           tuple((r.parent, r.parent_link, r.child) for r in riding), tuple(kept))
     table = _MADE_TABLES.get(key)
     if table is None:
         if len(_MADE_TABLES) >= _MAX_MADE_TABLES:
             _MADE_TABLES.pop(next(iter(_MADE_TABLES)))
-        table = _MADE_TABLES[key] = CheckedPairs(robot, obstacles, carried, allowed, riding)
+        table = _MADE_TABLES[key] = CheckedPairs(robot, obstacles, carried, allowed, riding, kept)
     return table

@@ -33,6 +33,7 @@ from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.bodies import BASE_LINK, Body
 from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedLinkPair, CheckedPairs, checked_pairs_of
 from kitchen_tamp.world.checked_pairs import AllowedContact as AllowedContact
+from kitchen_tamp.world.checked_pairs import KeptClearance as KeptClearance
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
 from kitchen_tamp.world.transforms import FloatArray, Pose
@@ -106,11 +107,13 @@ class PyBulletCollisionChecker:
         robot: Robot,
         allowed: Iterable[AllowedContact] = (),
         margin: float = 0.0,
+        kept: Iterable[KeptClearance] = (),
     ) -> None:
         self.scene = scene
         self.robot = robot
         self.margin = float(margin)
         self.allowed: tuple[AllowedContact, ...] = tuple(allowed)
+        self.kept: tuple[KeptClearance, ...] = tuple(kept)
         self.lower: FloatArray = robot.lower.copy()
         self.upper: FloatArray = robot.upper.copy()
         self._limits = (self.lower - 1e-9, self.upper + 1e-9)  # as Robot.within_limits
@@ -129,7 +132,7 @@ class PyBulletCollisionChecker:
         self._robot_slot = self._bodies.index(robot.body)
         self._arm_in_robot_state = [self._joints[self._robot_slot].index(i) for i in self._arm]
         self._carried_slots = tuple(self._bodies.index(a.child) for a in self.carried)
-        self._checked = checked_pairs_of(robot, self.obstacles, self.carried, self.allowed)
+        self._checked = checked_pairs_of(robot, self.obstacles, self.carried, self.allowed, (), self.kept)
         self._pairs = self._checked.pairs
         self._static_bounds = self._checked.static_bounds()
         riding = tuple(
@@ -137,7 +140,9 @@ class PyBulletCollisionChecker:
         )
         self._checked_along = self._checked
         if riding:
-            self._checked_along = checked_pairs_of(robot, self.obstacles, self.carried, self.allowed, riding)
+            self._checked_along = checked_pairs_of(
+                robot, self.obstacles, self.carried, self.allowed, riding, self.kept
+            )
 
     def policy(self) -> tuple[CheckedLinkPair, ...]:
         """The pairs this checker checks with the arm alone moving, as plain data."""
@@ -206,18 +211,19 @@ class PyBulletCollisionChecker:
         self, checked: CheckedPairs, horizon: float, static_bounds: FloatArray
     ) -> Iterator[tuple[int, float]]:
         """(pair, how far it is from colliding) for the checked pairs within ``horizon`` at the
-        current state: a pair's distance less the margin, or for an intended contact its
-        distance plus its allowance (the margin does not apply to what is meant to touch)."""
+        current state: a pair's distance less the margin (or less its kept clearance when that
+        is larger), or for an intended contact its distance plus its allowance (the margin
+        does not apply to what is meant to touch)."""
         client, ids, allowances = self._client, checked.pair_ids, checked.allowances
         for k, _ in checked.candidates(horizon, static_bounds):
             uid_a, link_a, uid_b, link_b = ids[k]
             allowance = float(allowances[k])
-            offset = allowance if allowance > 0.0 else -self.margin
+            offset = allowance if allowance > 0.0 else min(allowance, -self.margin)
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
                 yield k, float(point[8]) + offset
 
     def _collides_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> bool:
-        horizon = max(self.margin, 0.0)
+        horizon = max(self.margin, checked.kept_horizon)
         return any(d < 0.0 for _, d in self._distances(checked, horizon, static_bounds))
 
     def _clearance_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> float:
@@ -315,8 +321,8 @@ class PyBulletCollisionChecker:
         """Names of the pairs closer than the margin (intended contacts: deeper than their
         allowance) at ``q``, with
         ``along``'s joints at the given values (for error messages)."""
-        horizon, names = max(self.margin, 0.0), []
         checked = self._checked if along is None else self._checked_along
+        horizon, names = max(self.margin, checked.kept_horizon), []
         moved = None
         if along is not None:
             moved = (along[0], along[1], np.atleast_2d(np.asarray(along[2], dtype=float)))
@@ -332,7 +338,11 @@ class PyBulletCollisionChecker:
 
 
 def make_collision_checker(
-    scene: Scene, robot: Robot, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
+    scene: Scene,
+    robot: Robot,
+    allowed: Iterable[AllowedContact] = (),
+    margin: float = 0.0,
+    kept: Iterable[KeptClearance] = (),
 ) -> PyBulletCollisionChecker:
     """The factory motion planners are given: a checker of the scene as it is now."""
-    return PyBulletCollisionChecker(scene, robot, allowed, margin)
+    return PyBulletCollisionChecker(scene, robot, allowed, margin, kept)

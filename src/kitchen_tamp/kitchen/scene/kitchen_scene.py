@@ -17,6 +17,7 @@ from kitchen_tamp.world import (
     Body,
     FloatArray,
     InverseKinematics,
+    KeptClearance,
     Pose,
     PyBulletCollisionChecker,
     Robot,
@@ -167,14 +168,21 @@ class KitchenScene:
 
     # -- checking ------------------------------------------------------------------------------------
     def collision_checker(
-        self, allowed: Iterable[AllowedContact] = (), margin: float = 0.0
+        self, allowed: Iterable[AllowedContact] = (), margin: float = 0.0, kept: Iterable[KeptClearance] = ()
     ) -> PyBulletCollisionChecker:
         """A checker of the scene as it is now (held box attached, drawers where they are);
-        with a ``margin`` (m), configurations closer than that to contact count as colliding.
-        The fingers may touch the box they hold (down to the contact bound)."""
+        with a ``margin`` (m), configurations closer than that to contact count as colliding,
+        and the ``kept`` clearances hold besides. The fingers may touch the box they hold
+        (down to the contact bound)."""
         held = self.held_box()
         intended = tuple(allowed) + (() if held is None else (self.finger_contact(held),))
-        return make_collision_checker(self.scene, self.robot, intended, margin)
+        return make_collision_checker(self.scene, self.robot, intended, margin, kept)
+
+    def clear_of_boxes(self, besides: Iterable[str], clearance: float) -> tuple[KeptClearance, ...]:
+        """``clearance`` kept from every box but those named ``besides`` (the one the hand works
+        on and what it stands on or goes onto)."""
+        skipped = set(besides)
+        return tuple(KeptClearance(name, clearance) for name in self.boxes if name not in skipped)
 
     def collision_free_ik(
         self,

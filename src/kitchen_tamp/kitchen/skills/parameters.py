@@ -34,6 +34,12 @@ class SkillParameters:
     """Where a skill hands over to free-space motion (before its approach, after its
     retreat) the arm and what it carries keep at least this clearance, so a motion
     planner keeping a small margin can start and end there."""
+    neighbour_clearance: float = 0.003
+    """The straight moves of pick and place (approach, lift, descent, retreat) keep the hand
+    and the held box at least this far from every box but the one handled and what it
+    stands on or goes onto. Under physics the hand lags its plan and PyBullet makes a
+    contact within 1 mm (``PhysicsSettings.contact_breaking_threshold``): a hand that
+    passed a neighbour 0.05-0.3 mm away pushed it (0.04-3.7 N) in the benchmark sweeps."""
     ik_solutions: int = 4
     """IK solutions of one target pose tried for being collision-free before the next sample."""
     attempts: int = 40
@@ -58,6 +64,8 @@ class SkillParameters:
     def __post_init__(self) -> None:
         if min(self.pregrasp_distance, self.lift_height, self.waypoint_step, self.max_joint_step) <= 0:
             raise ValueError(f"skill distances must be positive: {self}")
+        if self.neighbour_clearance < 0:
+            raise ValueError(f"the neighbour clearance must not be negative: {self.neighbour_clearance}")
         probabilities = (self.keep_down_probability, self.hand_above_probability)
         budgets = min(self.attempts, self.placement_draws)
         packing = 0.0 <= self.packed_probability <= 1.0

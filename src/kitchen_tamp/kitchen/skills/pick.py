@@ -23,7 +23,7 @@ from kitchen_tamp.kitchen.skills.straight_moves import (
     straight_move,
 )
 from kitchen_tamp.kitchen.skills.targets import SkillTargets, action_text
-from kitchen_tamp.world import AllowedContact, FloatArray, Pose, PyBulletCollisionChecker
+from kitchen_tamp.world import AllowedContact, FloatArray, KeptClearance, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -45,6 +45,8 @@ class PickProblem:
     free_checker: PyBulletCollisionChecker
     clear_checker: PyBulletCollisionChecker
     approach_checker: PyBulletCollisionChecker
+    """The grasp and the approach into it: the fingers may touch the box, the neighbour
+    clearance is kept from the boxes beside it."""
     finger_contact: AllowedContact
 
     @property
@@ -75,7 +77,8 @@ class PickProblem:
         lift_path = straight_move(kitchen, q_grasp, world_from_tool, self.lift * UP, parameters)
         if lift_path is None:
             return None
-        if not all_valid(_holding_checker(kitchen, self.box, q_grasp, grasp.width), lift_path, rejections):
+        holding = _holding_checker(kitchen, self.box, q_grasp, grasp.width, self.approach_checker.kept)
+        if not all_valid(holding, lift_path, rejections):
             return None
         close_qs, close_widths = hold_still(q_grasp, (self.open_width, grasp.width))
         segments = (
@@ -101,15 +104,16 @@ class PickProblem:
 
 
 def _holding_checker(
-    kitchen: KitchenScene, box: str, q_grasp: FloatArray, width: float
+    kitchen: KitchenScene, box: str, q_grasp: FloatArray, width: float, kept: tuple[KeptClearance, ...]
 ) -> PyBulletCollisionChecker:
-    """A checker of the scene with ``box`` held as it would be when grasped at ``q_grasp``."""
+    """A checker of the scene with ``box`` held as it would be when grasped at ``q_grasp``,
+    keeping the ``kept`` clearances."""
     with kitchen.scene.preserved():
         kitchen.robot.set_configuration(q_grasp)
         kitchen.robot.set_gripper_width(width)
         kitchen.scene.detach(kitchen.box(box))
         kitchen.grasp(box)
-        return kitchen.collision_checker()
+        return kitchen.collision_checker(kept=kept)
 
 
 def sample_pick(
@@ -159,7 +163,9 @@ def sample_pick(
             max_width=robot.max_gripper_width - parameters.finger_clearance,
             free_checker=kitchen.collision_checker(),
             clear_checker=kitchen.collision_checker(margin=parameters.free_space_clearance),
-            approach_checker=kitchen.collision_checker([finger_contact]),
+            approach_checker=kitchen.collision_checker(
+                [finger_contact], kept=kitchen.clear_of_boxes((box, support), parameters.neighbour_clearance)
+            ),
             finger_contact=finger_contact,
         )
     return sample_skill(problem, rng, parameters, Rejections(kitchen, (box,), support))

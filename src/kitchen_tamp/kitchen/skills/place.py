@@ -29,7 +29,7 @@ from kitchen_tamp.kitchen.skills.placements import (
 from kitchen_tamp.kitchen.skills.sampling_loop import Rejections, sample_skill
 from kitchen_tamp.kitchen.skills.straight_moves import all_valid, hold_still, straight_approach, straight_move
 from kitchen_tamp.kitchen.skills.targets import SkillTargets, action_text
-from kitchen_tamp.world import FloatArray, Pose, PyBulletCollisionChecker
+from kitchen_tamp.world import FloatArray, KeptClearance, Pose, PyBulletCollisionChecker
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -77,6 +77,9 @@ class PlaceProblem:
     q_now: FloatArray
     open_width: float
     carrying_checker: PyBulletCollisionChecker
+    """The scene with the box held, for the free-space motion to the place."""
+    descent_checker: PyBulletCollisionChecker
+    """The place and the descent onto it: the neighbour clearance kept from the boxes there."""
     clear_checker: PyBulletCollisionChecker
     packed: PackedQueue = field(default_factory=PackedQueue)
 
@@ -145,15 +148,15 @@ class PlaceProblem:
         if approach[2] > 0.1:
             return None
         q_place = kitchen.collision_free_ik(
-            world_from_tool, self.carrying_checker, rng, parameters.ik_solutions,
-            rejected=lambda q: rejections.collided(self.carrying_checker, q),
+            world_from_tool, self.descent_checker, rng, parameters.ik_solutions,
+            rejected=lambda q: rejections.collided(self.descent_checker, q),
         )
         if q_place is None:
             return None
         bottom = self.region.top_z
         height = max(parameters.lift_height, self.region.ceiling_z + parameters.wall_clearance - bottom)
         descent = straight_approach(kitchen, q_place, world_from_tool, -UP, height, parameters)
-        if descent is None or not all_valid(self.carrying_checker, descent, rejections):
+        if descent is None or not all_valid(self.descent_checker, descent, rejections):
             return None
         if not self.clear_checker.is_valid(descent[0])[0]:
             rejections.collided(self.clear_checker, descent[0])
@@ -163,7 +166,9 @@ class PlaceProblem:
         )
         if retreat is None:
             return None
-        touching, clear = _released_checkers(kitchen, self.box, q_place, parameters.free_space_clearance)
+        touching, clear = _released_checkers(
+            kitchen, self.box, q_place, parameters.free_space_clearance, self.descent_checker.kept
+        )
         if not all_valid(touching, retreat, rejections) or not all_valid(clear, retreat[-1:], rejections):
             return None
         release_qs, release_widths = hold_still(q_place, (self.width, self.open_width))
@@ -190,16 +195,16 @@ class PlaceProblem:
 
 
 def _released_checkers(
-    kitchen: KitchenScene, box: str, q_place: FloatArray, clearance: float
+    kitchen: KitchenScene, box: str, q_place: FloatArray, clearance: float, kept: tuple[KeptClearance, ...]
 ) -> tuple[PyBulletCollisionChecker, PyBulletCollisionChecker]:
-    """(fingers may touch the box, ``clearance`` kept from everything) checkers of the scene
-    after letting go at ``q_place``."""
+    """(fingers may touch the box and keep the ``kept`` clearances, ``clearance`` kept from
+    everything) checkers of the scene after letting go at ``q_place``."""
     robot = kitchen.robot
     with kitchen.scene.preserved():
         robot.set_configuration(q_place)
         kitchen.release(box)
         kitchen.set_gripper_open()
-        touching = kitchen.collision_checker([kitchen.finger_contact(box)])
+        touching = kitchen.collision_checker([kitchen.finger_contact(box)], kept=kept)
         return touching, kitchen.collision_checker(margin=clearance)
 
 
@@ -270,6 +275,9 @@ def sample_place(
         q_now=kitchen.arm_configuration(),
         open_width=robot.max_gripper_width,
         carrying_checker=kitchen.collision_checker(),
+        descent_checker=kitchen.collision_checker(
+            kept=kitchen.clear_of_boxes((box, target), parameters.neighbour_clearance)
+        ),
         clear_checker=kitchen.collision_checker(margin=parameters.free_space_clearance),
     )
     return sample_skill(problem, rng, parameters, Rejections(kitchen, (box,), target))

@@ -182,6 +182,11 @@ class DrakeCollisionChecker:
         plant, instances = self.plant, self._instances
         checked: dict[frozenset[BodyIndex], float] = {}
         for pair in scene.checked_pairs:
+            if pair.allowance < 0.0:
+                raise ValueError(
+                    f"{pair.body_a}/{pair.link_a} keeps a clearance from {pair.body_b}/{pair.link_b}, "
+                    "which Drake's model does not check"
+                )
             a = plant.GetBodyByName(pair.link_a, instances[pair.body_a]).index()
             b = plant.GetBodyByName(pair.link_b, instances[pair.body_b]).index()
             key = frozenset((a, b))
