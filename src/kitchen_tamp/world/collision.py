@@ -218,7 +218,12 @@ class PyBulletCollisionChecker:
         for k, _ in checked.candidates(horizon, static_bounds):
             uid_a, link_a, uid_b, link_b = ids[k]
             allowance = float(allowances[k])
-            offset = allowance if allowance > 0.0 else min(allowance, -self.margin)
+            if allowance > 0.0:  # an intended contact: touching is allowed down to its bound
+                offset = allowance
+            elif allowance < 0.0:  # a kept clearance, or the margin when that is larger
+                offset = min(allowance, -self.margin)
+            else:
+                offset = -self.margin
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
                 yield k, float(point[8]) + offset
 
