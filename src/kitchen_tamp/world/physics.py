@@ -67,6 +67,13 @@ class PhysicsSettings:
     """Distance (m) at which PyBullet forgets a contact point. Its default, 2 cm, keeps stale
     points between the finger meshes and a box whose normals point the wrong way once the
     fingers open: the box then sticks to a finger (releases fail, or a box is dragged away)."""
+    polyhedral_contacts: bool = True
+    """Contacts between convex meshes by PyBullet's separating-axis test and face clipping
+    (``enableSAT``; the scene must be loaded with ``Scene(polyhedral_contacts=True)``) instead
+    of GJK/EPA. With GJK/EPA, the edge at a finger mesh's tip could get a contact normal
+    pointing out of the box it pressed on: once the fingers opened, that contact pushed
+    them shut with their whole motor force and the box left with the hand (2 of about 240
+    benchmark runs). Costs about half as much physics time again."""
     passive_joint_friction: float = 5.0
     """Dry friction (N or N m) of joints nothing drives, e.g. a drawer's slide: without it
     a drawer creeps shut when a box is put in it."""
@@ -123,6 +130,7 @@ class PhysicsWorld:
             numSolverIterations=settings.solver_iterations,
             deterministicOverlappingPairs=1,
             contactBreakingThreshold=settings.contact_breaking_threshold,
+            enableSAT=int(settings.polyhedral_contacts),
             physicsClientId=self.client,
         )
         arm = robot.body

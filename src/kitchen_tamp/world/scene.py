@@ -30,13 +30,20 @@ class Scene:
 
     The simulation is never stepped: bodies are placed kinematically, and every
     change of a joint goes through ``set_joint_positions`` so that attached bodies
-    follow their parent links.
+    follow their parent links (a ``PhysicsWorld`` steps a scene of its own).
+
+    With ``polyhedral_contacts``, every URDF is loaded with the faces PyBullet's
+    polyhedral (separating-axis) contacts need; a ``PhysicsWorld`` whose settings ask for
+    them then uses them. Planning and the kinematic judge never ask for them.
     """
 
-    def __init__(self, gui: bool = False) -> None:
+    def __init__(self, gui: bool = False, polyhedral_contacts: bool = False) -> None:
         self.client: int = p.connect(p.GUI if gui else p.DIRECT)
         if self.client < 0:
             raise SceneClosedError("could not connect to a PyBullet physics server")
+        self._urdf_flags = p.URDF_USE_INERTIA_FROM_FILE
+        if polyhedral_contacts:
+            self._urdf_flags |= p.URDF_INITIALIZE_SAT_FEATURES
         self._bodies: dict[str, Body] = {}
         self._urdf_paths: dict[str, Path] = {}
         self._attachments: dict[str, Attachment] = {}
@@ -79,7 +86,7 @@ class Scene:
             basePosition=world_from_base.position,
             baseOrientation=world_from_base.quaternion,
             useFixedBase=fixed_base,
-            flags=p.URDF_USE_INERTIA_FROM_FILE,
+            flags=self._urdf_flags,
             physicsClientId=self.client,
         )
         body = Body(self.client, uid, name)

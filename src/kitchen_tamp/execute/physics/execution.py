@@ -66,10 +66,13 @@ def execute_under_physics(
     result = PhysicsExecution(configuration)
     steps = trajectory.steps
     judged_in_order = judged_steps(judged) if isinstance(judged, Verification) else judged
-    with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
+    settings = configuration.settings
+    with build_kitchen_for_task(
+        task, kitchen_map=kitchen_map, polyhedral_contacts=settings.polyhedral_contacts
+    ) as kitchen:
         world = PhysicsWorld(
             kitchen.scene, kitchen.robot, [kitchen.kitchen], list(kitchen.boxes.values()),
-            configuration.settings,
+            settings,
         )
         rollout = Rollout(kitchen, world, result, dict(task.objects), on_frame)
         rollout.settle()

@@ -152,6 +152,7 @@ class PhysicsExecution:
                 "grip_squeeze_m": settings.grip_squeeze,
                 "passive_joint_friction": settings.passive_joint_friction,
                 "box_friction": settings.box_material.lateral,
+                "polyhedral_contacts": settings.polyhedral_contacts,
                 "speed_fraction": self.configuration.time_law.speed_fraction,
             },
         }

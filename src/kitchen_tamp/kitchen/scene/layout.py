@@ -110,8 +110,10 @@ def build_kitchen(
     init_atoms: Iterable[Atom],
     gui: bool = False,
     kitchen_map: KitchenMap | None = None,
+    polyhedral_contacts: bool = False,
 ) -> KitchenScene:
     """The kitchen laid out from ``:init``; Ψ(scene) is checked to equal ``init_atoms``.
+    ``polyhedral_contacts``: for a ``PhysicsWorld`` (``Scene``).
 
     Raises ``UnknownObjectError`` for objects the kitchen lacks,
     ``UnsupportedInitialStateError`` for starts it cannot lay out and
@@ -123,7 +125,7 @@ def build_kitchen(
     boxes = sorted(n for n in objects if kitchen_map.type_of(n) == "box")
     supports = start_supports(init, boxes, kitchen_map)
     opened_predicates = kitchen_map.binding.predicates_for("opened")
-    scene = Scene(gui=gui)
+    scene = Scene(gui=gui, polyhedral_contacts=polyhedral_contacts)
     try:
         kitchen_body = scene.load_urdf(KITCHEN_BODY, kitchen_map.kitchen_urdf, fixed_base=True)
         mount = support_region(kitchen_body, ROBOT_MOUNT_LINK, ROBOT_MOUNT_LINK)
@@ -152,10 +154,11 @@ def build_kitchen(
 
 
 def build_kitchen_for_task(
-    task: Task, gui: bool = False, kitchen_map: KitchenMap | None = None
+    task: Task, gui: bool = False, kitchen_map: KitchenMap | None = None, polyhedral_contacts: bool = False
 ) -> KitchenScene:
     """The kitchen for a parsed problem (the default kitchen unless ``kitchen_map`` is given)."""
-    return build_kitchen(task.objects, task.init_atoms, gui=gui, kitchen_map=kitchen_map)
+    return build_kitchen(task.objects, task.init_atoms, gui=gui, kitchen_map=kitchen_map,
+                         polyhedral_contacts=polyhedral_contacts)
 
 
 def load_kitchen_problem(
