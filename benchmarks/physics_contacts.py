@@ -27,8 +27,9 @@ from pathlib import Path
 MODELS = ("gjk", "polyhedral")
 
 
-def execute_one(run_dir: Path, model: str) -> dict[str, object]:
-    """Judge ``run_dir`` in this process under ``model``."""
+def execute_one(trajectory_file: Path, model: str, problem: Path | None = None) -> dict[str, object]:
+    """Judge a saved run in this process under ``model``, against ``problem`` (with the domain
+    and scene beside it) or else the files the run recorded."""
     from kitchen_tamp.execute import read_trajectory
     from kitchen_tamp.execute.physics.execution import execute_under_physics
     from kitchen_tamp.execute.physics.verdict import DEFAULT_CONFIGURATION
@@ -37,9 +38,9 @@ def execute_one(run_dir: Path, model: str) -> dict[str, object]:
     from kitchen_tamp.kitchen.scene.choice import choose_scene
     from kitchen_tamp.planning import load_task
 
-    run = read_trajectory(run_dir / "trajectory.json")
-    choice = choose_scene(run.problem, run.scene, run.domain)
-    task, kitchen_map = load_task(run.problem, run.domain), choice.kitchen_map()
+    run = read_trajectory(trajectory_file)
+    choice = choose_scene(run.problem, run.scene, run.domain) if problem is None else choose_scene(problem)
+    task, kitchen_map = load_task(choice.problem, choice.domain), choice.kitchen_map()
     with build_kitchen_for_task(task, kitchen_map=kitchen_map) as fresh:
         verification = verify_trajectory(fresh, task, run.trajectory)
     settings = replace(DEFAULT_CONFIGURATION.settings, polyhedral_contacts=model == "polyhedral")
@@ -48,15 +49,15 @@ def execute_one(run_dir: Path, model: str) -> dict[str, object]:
         task, run.trajectory, verification, kitchen_map, replace(DEFAULT_CONFIGURATION, settings=settings)
     )
     return {"kinematic": verification.verified, "physics": physics.verified,
-            "cpu_s": time.process_time() - clock, "problem": physics.problems[0] if physics.problems else ""}
+            "cpu_s": time.process_time() - clock, "problems": physics.problems}
 
 
 def execute_in_child(run_dir: Path, model: str) -> dict[str, object]:
-    command = [sys.executable, __file__, "--one", str(run_dir), model]
+    command = [sys.executable, __file__, "--one", str(run_dir / "trajectory.json"), model]
     done = subprocess.run(command, capture_output=True, text=True, check=False)
     if done.returncode != 0:
         crash = f"crashed: {done.stderr[-200:]}"
-        return {"kinematic": False, "physics": False, "cpu_s": 0.0, "problem": crash}
+        return {"kinematic": False, "physics": False, "cpu_s": 0.0, "problems": [crash]}
     result: dict[str, object] = json.loads(done.stdout.splitlines()[-1])
     return result
 
@@ -65,10 +66,13 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sweeps", nargs="*", type=Path, help="evaluate output folders")
     parser.add_argument("--jobs", type=int, default=2, help="executions at once")
-    parser.add_argument("--one", nargs=2, metavar=("RUN_DIR", "MODEL"), help=argparse.SUPPRESS)
+    parser.add_argument("--one", nargs=2, metavar=("TRAJECTORY", "MODEL"),
+                        help="judge one saved run under MODEL (gjk or polyhedral) in this process "
+                        "and print its verdicts as JSON")
+    parser.add_argument("--problem", type=Path, help="with --one: judge against this problem file")
     args = parser.parse_args()
     if args.one:
-        print(json.dumps(execute_one(Path(args.one[0]), args.one[1])))
+        print(json.dumps(execute_one(Path(args.one[0]), args.one[1], args.problem)))
         return 0
     folders = (d for sweep in args.sweeps for d in (sweep / "runs").glob("*"))
     runs = sorted(d for d in folders if (d / "trajectory.json").exists())
@@ -95,7 +99,9 @@ def main() -> int:
         gjk, polyhedral = (verdicts[(run, m)] for m in MODELS)
         if gjk["physics"] != polyhedral["physics"]:
             failed = "gjk" if polyhedral["physics"] else "polyhedral"
-            print(f"{run.name}: fails under {failed} only: {verdicts[(run, failed)]['problem']}")
+            problems = verdicts[(run, failed)]["problems"]
+            first = problems[0] if isinstance(problems, list) and problems else ""
+            print(f"{run.name}: fails under {failed} only: {first}")
     return 0
 
 
