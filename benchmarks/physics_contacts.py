@@ -72,6 +72,10 @@ def main() -> int:
     parser.add_argument("--problem", type=Path, help="with --one: judge against this problem file")
     args = parser.parse_args()
     if args.one:
+        if args.one[1] not in MODELS:
+            print(f"error: --one: unknown contact model {args.one[1]!r} (one of {', '.join(MODELS)})",
+                  file=sys.stderr)
+            return 2
         print(json.dumps(execute_one(Path(args.one[0]), args.one[1], args.problem)))
         return 0
     folders = (d for sweep in args.sweeps for d in (sweep / "runs").glob("*"))

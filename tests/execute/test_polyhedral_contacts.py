@@ -21,7 +21,11 @@ from pathlib import Path
 
 import pytest
 
+from kitchen_tamp.kitchen import build_kitchen_for_task
+from kitchen_tamp.kitchen.scene.choice import choose_scene
+from kitchen_tamp.planning import load_task
 from kitchen_tamp.shipped_kitchens import kitchen_folder
+from kitchen_tamp.world.physics import DEFAULT_PHYSICS, PhysicsWorld
 
 RUN = Path(__file__).parent / "data" / "kitchen_optimizes_seed1.trajectory.json"
 PROBLEM = kitchen_folder("benchmarks") / "kitchen" / "problem.pddl"
@@ -46,3 +50,12 @@ def test_the_fingers_let_go_of_a_box_they_release_under_polyhedral_contacts() ->
     problems = gjk["problems"]
     assert isinstance(problems, list)
     assert problems[0].startswith("after (place cabbage hob): the scene shows ['(holding cabbage)']")
+
+
+def test_polyhedral_contacts_refuse_a_scene_loaded_without_them() -> None:
+    choice = choose_scene(PROBLEM)
+    task = load_task(choice.problem, choice.domain)
+    refused = pytest.raises(ValueError, match="polyhedral contacts need a scene loaded with them")
+    with build_kitchen_for_task(task, kitchen_map=choice.kitchen_map()) as kitchen, refused:
+        PhysicsWorld(kitchen.scene, kitchen.robot, [kitchen.kitchen], list(kitchen.boxes.values()),
+                     DEFAULT_PHYSICS)

@@ -122,6 +122,9 @@ class PhysicsWorld:
         self.settings = settings
         self.client = scene.client
         self.time = 0.0
+        if settings.polyhedral_contacts and not scene.polyhedral_contacts:
+            raise ValueError("polyhedral contacts need a scene loaded with them: "
+                             "Scene(polyhedral_contacts=True)")
         for body in loose:
             scene.detach(body)
         p.setGravity(0.0, 0.0, -settings.gravity, physicsClientId=self.client)

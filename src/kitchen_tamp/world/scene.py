@@ -41,6 +41,7 @@ class Scene:
         self.client: int = p.connect(p.GUI if gui else p.DIRECT)
         if self.client < 0:
             raise SceneClosedError("could not connect to a PyBullet physics server")
+        self.polyhedral_contacts = polyhedral_contacts
         self._urdf_flags = p.URDF_USE_INERTIA_FROM_FILE
         if polyhedral_contacts:
             self._urdf_flags |= p.URDF_INITIALIZE_SAT_FEATURES
