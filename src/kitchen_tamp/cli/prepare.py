@@ -56,14 +56,18 @@ def _compile_kernels() -> None:
 
 
 def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
-    """One iteration of RRT-Connect's compiled loop (`compiled_rrt_connect`) from ``home`` to itself."""
+    """The ends and straight line of a compiled plan, and one iteration of RRT-Connect's compiled
+    loop (`compiled_rrt_connect`), from ``home`` to itself."""
     from kitchen_tamp.motion import ConfigurationSpace
     from kitchen_tamp.motion.configuration_space import UniformSamples
     from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
+    from kitchen_tamp.motion.sampling.rrt_connect_kernel import ends_and_line_checked
 
     samples = UniformSamples(ConfigurationSpace(checker.lower, checker.upper), np.random.default_rng(0))
     settings = LoopSettings(1.0, 0.01, 1, 0.0, math.inf, time.perf_counter)
-    run_compiled_loop(home, home, samples, checker.compiled_validity(), settings)
+    arrays, margin = checker.compiled_validity()
+    run_compiled_loop(home, home, samples, (arrays, margin), settings)
+    ends_and_line_checked(home, home, 0.01, arrays, margin, True)
 
 
 def _compile_planning_kernels(task: Task) -> None:

@@ -15,11 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from kitchen_tamp.joint_spacing import interval_count
 from kitchen_tamp.motion.collision_checker import JointConfiguration
 from kitchen_tamp.motion.configuration_space import UniformSamples
-from kitchen_tamp.motion.geometry.spheres.kernels.segments import segment_checked
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.planning_result import PlanningResult, PlanStatus
 from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
@@ -29,13 +26,16 @@ from kitchen_tamp.motion.sampling.rrt_connect_kernel import (
     COUNTER_ITERATIONS,
     COUNTER_JOINED,
     COUNTER_SIZES,
+    ENDS_JOINED,
+    GOAL_COLLIDES,
+    START_COLLIDES,
+    ends_and_line_checked,
     rrt_connect_iterations,
 )
 
 _ITERATIONS: Any = rrt_connect_iterations
 """The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
-_VALID_CONFIGURATIONS: Any = valid_configurations
-_SEGMENT_CHECKED: Any = segment_checked
+_ENDS_AND_LINE: Any = ends_and_line_checked
 
 INITIAL_CAPACITY = 1024
 """Rows of each tree's arrays at first; they double when a block of iterations might not fit."""
@@ -51,6 +51,8 @@ class LoopSettings:
     tree_balance: float
     deadline: float
     clock: Callable[[], float]
+    certified: bool = True
+    """Segments walked with clearance bounds (`certified_segments`), or every configuration checked."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -153,6 +155,7 @@ def run_compiled_loop(
             arrays,
             margin,
             settings.tree_balance,
+            settings.certified,
         )
         samples.skip(int(used))
         if counters[COUNTER_JOINED]:
@@ -175,14 +178,11 @@ def plan_compiled(
     ends), then `run_compiled_loop`; the same checks, counted alike, as through a
     `CountingSegmentChecker` of the checker, without its Python layers."""
     arrays, margin = compiled
-    ends = np.stack([start, goal])
-    start_valid, goal_valid = _VALID_CONFIGURATIONS(ends, arrays, margin, False)
-    if not (start_valid and goal_valid):
-        status = PlanStatus.START_IN_COLLISION if not start_valid else PlanStatus.GOAL_IN_COLLISION
-        return LoopOutcome(status, None, 0, 2, len(ends))
-    intervals = interval_count(start, goal, settings.resolution)
-    free, checked = _SEGMENT_CHECKED(start, goal, intervals, False, False, arrays, margin)
-    if free:
-        return LoopOutcome(PlanStatus.SOLVED, ends, 0, 2, len(ends) + int(checked))
+    found, checked = _ENDS_AND_LINE(start, goal, settings.resolution, arrays, margin, settings.certified)
+    if found in (START_COLLIDES, GOAL_COLLIDES):
+        status = PlanStatus.START_IN_COLLISION if found == START_COLLIDES else PlanStatus.GOAL_IN_COLLISION
+        return LoopOutcome(status, None, 0, 2, int(checked))
+    if found == ENDS_JOINED:
+        return LoopOutcome(PlanStatus.SOLVED, np.stack([start, goal]), 0, 2, int(checked))
     outcome = run_compiled_loop(start, goal, samples, compiled, settings)
-    return replace(outcome, collision_checks=len(ends) + int(checked) + outcome.collision_checks)
+    return replace(outcome, collision_checks=int(checked) + outcome.collision_checks)

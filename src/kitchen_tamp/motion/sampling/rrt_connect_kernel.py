@@ -23,7 +23,12 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.certified_segments import (
+    certified_free_prefix_checked_in,
+    certified_segment_checked_in,
+)
 from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked_in, segment_checked_in
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     ValidityArrays,
     ValidityScratch,
@@ -45,6 +50,10 @@ COUNTER_JOINED = 5
 """1 once the trees are joined: the start tree's end node at the next index, the goal tree's after."""
 COUNTER_COUNT = 8
 
+ENDS_JOINED, START_COLLIDES, GOAL_COLLIDES, LINE_BLOCKED = 0, 1, 2, 3
+"""What `ends_and_line_checked` found: the straight line between the ends free, an end colliding,
+or the ends valid and the line between them not."""
+
 
 @numba.njit(cache=True)
 def _interval_count(q0: FloatArray, q1: FloatArray, resolution: float) -> int:
@@ -58,6 +67,25 @@ def _distance(q0: FloatArray, q1: FloatArray) -> float:
     for j in range(q0.shape[0]):
         squared += (q1[j] - q0[j]) * (q1[j] - q0[j])
     return math.sqrt(squared)
+
+
+@numba.njit(cache=True)
+def _segment(
+    q0: FloatArray,
+    q1: FloatArray,
+    resolution: float,
+    check_end: bool,
+    arrays: ValidityArrays,
+    margin: float,
+    scratch: ValidityScratch,
+    certified: bool,
+) -> tuple[bool, int]:
+    """Whether q0 -> q1 is free at ``resolution`` (q0 vouched for), configurations counted: walked
+    with clearance bounds (``certified``) or every configuration checked, coarse to fine."""
+    intervals = _interval_count(q0, q1, resolution)
+    if certified:
+        return certified_segment_checked_in(q0, q1, intervals, False, check_end, arrays, margin, scratch)
+    return segment_checked_in(q0, q1, intervals, False, check_end, arrays, margin, scratch)
 
 
 @numba.njit(cache=True)
@@ -108,6 +136,7 @@ def _extend(
     arrays: ValidityArrays,
     margin: float,
     scratch: ValidityScratch,
+    certified: bool,
 ) -> int:
     """One step from the nearest node toward ``target`` (`rrt_connect.extend_tree`): the new node's
     index, or -1 when the step collides."""
@@ -115,8 +144,7 @@ def _extend(
     q_near = nodes[tree, near].copy()
     distance = _distance(q_near, target)
     q_new = target.copy() if distance <= step_size else q_near + (target - q_near) * (step_size / distance)
-    intervals = _interval_count(q_near, q_new, resolution)
-    free, checked = segment_checked_in(q_near, q_new, intervals, False, True, arrays, margin, scratch)
+    free, checked = _segment(q_near, q_new, resolution, True, arrays, margin, scratch, certified)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return -1
@@ -136,6 +164,7 @@ def _connect(
     arrays: ValidityArrays,
     margin: float,
     scratch: ValidityScratch,
+    certified: bool,
 ) -> tuple[int, bool]:
     """Steps from the nearest node toward ``target`` until it is reached or a step collides
     (`rrt_connect.connect_tree`): the last node's index and whether it is ``target``."""
@@ -144,9 +173,14 @@ def _connect(
     distance = _distance(q_near, target)
     if distance == 0.0:
         return near, True
-    free_length, checked = free_prefix_checked_in(
-        q_near, target, distance, resolution, arrays, margin, scratch
-    )
+    if certified:
+        free_length, checked = certified_free_prefix_checked_in(
+            q_near, target, distance, resolution, arrays, margin, scratch
+        )
+    else:
+        free_length, checked = free_prefix_checked_in(
+            q_near, target, distance, resolution, arrays, margin, scratch
+        )
     counters[COUNTER_CHECKS] += checked
     reached = free_length >= distance
     resolutions_per_step = max(1, round(step_size / resolution))
@@ -162,8 +196,7 @@ def _connect(
     if not reached:
         return index, False
     last = nodes[tree, index].copy()
-    intervals = _interval_count(last, target, resolution)
-    free, checked = segment_checked_in(last, target, intervals, False, False, arrays, margin, scratch)
+    free, checked = _segment(last, target, resolution, False, arrays, margin, scratch, certified)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return index, False
@@ -184,11 +217,14 @@ def rrt_connect_iterations(
     arrays: ValidityArrays,
     margin: float,
     tree_balance: float,
+    certified: bool,
 ) -> int:
     """Run iterations on the trees, one per row of ``samples`` (the samples used), stopping early
     when the trees are joined, at ``max_iterations``, or when either tree has fewer than
     ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
-    ``tree_balance`` a tree more than that many times the other's size waits its turn."""
+    ``tree_balance`` a tree more than that many times the other's size waits its turn. With
+    ``certified`` segments are walked with clearance bounds (`certified_segments`: the same verdicts,
+    fewer configurations checked), else every configuration is checked, coarse to fine."""
     capacity = nodes.shape[1]
     scratch = validity_scratch(arrays, nodes.shape[2])  # the validity kernel's buffers, for every check
     used = 0
@@ -214,6 +250,7 @@ def rrt_connect_iterations(
             arrays,
             margin,
             scratch,
+            certified,
         )
         if new >= 0:
             reached_target = nodes[growing, new].copy()
@@ -229,6 +266,7 @@ def rrt_connect_iterations(
                 arrays,
                 margin,
                 scratch,
+                certified,
             )
             if reached:
                 counters[COUNTER_JOINED] = 1
@@ -242,3 +280,27 @@ def rrt_connect_iterations(
             other = growing  # the other tree is the larger by more than the balance: grow this one again
         counters[COUNTER_GROWING] = other
     return used
+
+
+@numba.njit(cache=True)
+def ends_and_line_checked(
+    start: FloatArray,
+    goal: FloatArray,
+    resolution: float,
+    arrays: ValidityArrays,
+    margin: float,
+    certified: bool,
+) -> tuple[int, int]:
+    """What a plan checks before its loop, in one call: both ends, then (when both are valid) the
+    straight line between them; (``ENDS_JOINED``, ``START_COLLIDES``, ``GOAL_COLLIDES`` or
+    ``LINE_BLOCKED``, configurations checked)."""
+    scratch = validity_scratch(arrays, start.shape[0])
+    ends = np.empty((2, start.shape[0]))
+    ends[0], ends[1] = start, goal
+    valid = valid_rows(ends, arrays, margin, False, scratch)
+    if not valid[0]:
+        return START_COLLIDES, 2
+    if not valid[1]:
+        return GOAL_COLLIDES, 2
+    free, checked = _segment(start, goal, resolution, False, arrays, margin, scratch, certified)
+    return (ENDS_JOINED if free else LINE_BLOCKED), 2 + checked
