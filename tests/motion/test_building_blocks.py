@@ -37,6 +37,20 @@ def test_space_validates_configurations() -> None:
     np.testing.assert_array_equal(space.validated([0.5, 1.0], "goal"), [0.5, 1.0])
     with pytest.raises(InvalidMotionQueryError, match="goal is not finite"):
         space.validated([np.nan, 0.5], "goal")
+    with pytest.raises(InvalidMotionQueryError, match="start is outside the joint bounds at joints \\[1\\]"):
+        space.validated([0.5, 1.5], "start")
+    with pytest.raises(InvalidMotionQueryError, match="shape \\(2,\\)"):
+        space.validated([0.5, 0.5, 0.5], "start")
+
+
+def test_uniform_samples_are_numpys_uniform_draws() -> None:
+    """`sample_uniform` scales standard uniforms itself (a third of ``rng.uniform``'s time with
+    array bounds): the same values, so the same seed plans the same."""
+    space = ConfigurationSpace(np.array([-2.9, -1.8, 0.0]), np.array([2.9, 1.8, 3.75]))
+    for seed in range(5):
+        ours = space.sample_uniform(np.random.default_rng(seed), 64)
+        numpys = np.random.default_rng(seed).uniform(space.lower, space.upper, size=(64, 3))
+        np.testing.assert_array_equal(ours, numpys)
 
 
 def test_tree_grows_past_its_capacity_and_finds_nearest() -> None:

@@ -67,7 +67,7 @@ def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray
     settings = LoopSettings(1.0, 0.01, 1, 0.0, math.inf, time.perf_counter)
     arrays, margin = checker.compiled_validity()
     run_compiled_loop(home, home, samples, (arrays, margin), settings)
-    ends_and_line_checked(home, home, 0.01, arrays, margin, True)
+    ends_and_line_checked(home, home, 0.01, arrays, margin)
 
 
 def _compile_planning_kernels(task: Task) -> None:

@@ -51,8 +51,6 @@ class LoopSettings:
     tree_balance: float
     deadline: float
     clock: Callable[[], float]
-    certified: bool = True
-    """Segments walked with clearance bounds (`certified_segments`), or every configuration checked."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,7 +153,6 @@ def run_compiled_loop(
             arrays,
             margin,
             settings.tree_balance,
-            settings.certified,
         )
         samples.skip(int(used))
         if counters[COUNTER_JOINED]:
@@ -178,7 +175,7 @@ def plan_compiled(
     ends), then `run_compiled_loop`; the same checks, counted alike, as through a
     `CountingSegmentChecker` of the checker, without its Python layers."""
     arrays, margin = compiled
-    found, checked = _ENDS_AND_LINE(start, goal, settings.resolution, arrays, margin, settings.certified)
+    found, checked = _ENDS_AND_LINE(start, goal, settings.resolution, arrays, margin)
     if found in (START_COLLIDES, GOAL_COLLIDES):
         status = PlanStatus.START_IN_COLLISION if found == START_COLLIDES else PlanStatus.GOAL_IN_COLLISION
         return LoopOutcome(status, None, 0, 2, int(checked))

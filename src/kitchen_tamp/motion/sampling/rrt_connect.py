@@ -37,11 +37,6 @@ class RrtConnectHyperparameters:
     (a tree trapped near its end by a narrow passage is grown until it is out)."""
     clock: Callable[[], float] = time.perf_counter
     """What the time budget is measured on: wall seconds; ``time.process_time`` for CPU seconds."""
-    certified_segments: bool = True
-    """In the compiled loop (the sphere model), skip the configurations of a segment that the coarse
-    spheres' clearance proves free (`sphere_certified_segments`): the same verdicts, so the same
-    search and path, from fewer configurations checked. False checks every one, as the Python loop
-    does (and counts as it does)."""
 
     def __post_init__(self) -> None:
         if self.step_size <= 0.0:
@@ -154,7 +149,6 @@ def plan_rrt_connect(
             params.tree_balance,
             deadline,
             clock,
-            params.certified_segments,
         )
         outcome = plan_compiled(q_start, q_goal, samples, compiled, settings)
         return outcome.result(0, clock() - clock_start)

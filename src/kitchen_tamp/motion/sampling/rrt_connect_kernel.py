@@ -23,10 +23,6 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.certified_segments import (
-    certified_free_prefix_checked_in,
-    certified_segment_checked_in,
-)
 from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked_in, segment_checked_in
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
@@ -67,25 +63,6 @@ def _distance(q0: FloatArray, q1: FloatArray) -> float:
     for j in range(q0.shape[0]):
         squared += (q1[j] - q0[j]) * (q1[j] - q0[j])
     return math.sqrt(squared)
-
-
-@numba.njit(cache=True)
-def _segment(
-    q0: FloatArray,
-    q1: FloatArray,
-    resolution: float,
-    check_end: bool,
-    arrays: ValidityArrays,
-    margin: float,
-    scratch: ValidityScratch,
-    certified: bool,
-) -> tuple[bool, int]:
-    """Whether q0 -> q1 is free at ``resolution`` (q0 vouched for), configurations counted: walked
-    with clearance bounds (``certified``) or every configuration checked, coarse to fine."""
-    intervals = _interval_count(q0, q1, resolution)
-    if certified:
-        return certified_segment_checked_in(q0, q1, intervals, False, check_end, arrays, margin, scratch)
-    return segment_checked_in(q0, q1, intervals, False, check_end, arrays, margin, scratch)
 
 
 @numba.njit(cache=True)
@@ -136,7 +113,6 @@ def _extend(
     arrays: ValidityArrays,
     margin: float,
     scratch: ValidityScratch,
-    certified: bool,
 ) -> int:
     """One step from the nearest node toward ``target`` (`rrt_connect.extend_tree`): the new node's
     index, or -1 when the step collides."""
@@ -144,7 +120,8 @@ def _extend(
     q_near = nodes[tree, near].copy()
     distance = _distance(q_near, target)
     q_new = target.copy() if distance <= step_size else q_near + (target - q_near) * (step_size / distance)
-    free, checked = _segment(q_near, q_new, resolution, True, arrays, margin, scratch, certified)
+    intervals = _interval_count(q_near, q_new, resolution)
+    free, checked = segment_checked_in(q_near, q_new, intervals, False, True, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return -1
@@ -164,7 +141,6 @@ def _connect(
     arrays: ValidityArrays,
     margin: float,
     scratch: ValidityScratch,
-    certified: bool,
 ) -> tuple[int, bool]:
     """Steps from the nearest node toward ``target`` until it is reached or a step collides
     (`rrt_connect.connect_tree`): the last node's index and whether it is ``target``."""
@@ -173,14 +149,9 @@ def _connect(
     distance = _distance(q_near, target)
     if distance == 0.0:
         return near, True
-    if certified:
-        free_length, checked = certified_free_prefix_checked_in(
-            q_near, target, distance, resolution, arrays, margin, scratch
-        )
-    else:
-        free_length, checked = free_prefix_checked_in(
-            q_near, target, distance, resolution, arrays, margin, scratch
-        )
+    free_length, checked = free_prefix_checked_in(
+        q_near, target, distance, resolution, arrays, margin, scratch
+    )
     counters[COUNTER_CHECKS] += checked
     reached = free_length >= distance
     resolutions_per_step = max(1, round(step_size / resolution))
@@ -196,7 +167,8 @@ def _connect(
     if not reached:
         return index, False
     last = nodes[tree, index].copy()
-    free, checked = _segment(last, target, resolution, False, arrays, margin, scratch, certified)
+    intervals = _interval_count(last, target, resolution)
+    free, checked = segment_checked_in(last, target, intervals, False, False, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
         return index, False
@@ -217,14 +189,11 @@ def rrt_connect_iterations(
     arrays: ValidityArrays,
     margin: float,
     tree_balance: float,
-    certified: bool,
 ) -> int:
     """Run iterations on the trees, one per row of ``samples`` (the samples used), stopping early
     when the trees are joined, at ``max_iterations``, or when either tree has fewer than
     ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
-    ``tree_balance`` a tree more than that many times the other's size waits its turn. With
-    ``certified`` segments are walked with clearance bounds (`certified_segments`: the same verdicts,
-    fewer configurations checked), else every configuration is checked, coarse to fine."""
+    ``tree_balance`` a tree more than that many times the other's size waits its turn."""
     capacity = nodes.shape[1]
     scratch = validity_scratch(arrays, nodes.shape[2])  # the validity kernel's buffers, for every check
     used = 0
@@ -250,7 +219,6 @@ def rrt_connect_iterations(
             arrays,
             margin,
             scratch,
-            certified,
         )
         if new >= 0:
             reached_target = nodes[growing, new].copy()
@@ -266,7 +234,6 @@ def rrt_connect_iterations(
                 arrays,
                 margin,
                 scratch,
-                certified,
             )
             if reached:
                 counters[COUNTER_JOINED] = 1
@@ -284,16 +251,12 @@ def rrt_connect_iterations(
 
 @numba.njit(cache=True)
 def ends_and_line_checked(
-    start: FloatArray,
-    goal: FloatArray,
-    resolution: float,
-    arrays: ValidityArrays,
-    margin: float,
-    certified: bool,
+    start: FloatArray, goal: FloatArray, resolution: float, arrays: ValidityArrays, margin: float
 ) -> tuple[int, int]:
-    """What a plan checks before its loop, in one call: both ends, then (when both are valid) the
-    straight line between them; (``ENDS_JOINED``, ``START_COLLIDES``, ``GOAL_COLLIDES`` or
-    ``LINE_BLOCKED``, configurations checked)."""
+    """What a plan checks before its loop, in one call (from Python, each compiled call costs
+    about 10 us): both ends, then (when both are valid) the straight line between them;
+    (``ENDS_JOINED``, ``START_COLLIDES``, ``GOAL_COLLIDES`` or ``LINE_BLOCKED``, configurations
+    checked, as `CountingSegmentChecker` counts them)."""
     scratch = validity_scratch(arrays, start.shape[0])
     ends = np.empty((2, start.shape[0]))
     ends[0], ends[1] = start, goal
@@ -302,5 +265,6 @@ def ends_and_line_checked(
         return START_COLLIDES, 2
     if not valid[1]:
         return GOAL_COLLIDES, 2
-    free, checked = _segment(start, goal, resolution, False, arrays, margin, scratch, certified)
+    intervals = _interval_count(start, goal, resolution)
+    free, checked = segment_checked_in(start, goal, intervals, False, False, arrays, margin, scratch)
     return (ENDS_JOINED if free else LINE_BLOCKED), 2 + checked

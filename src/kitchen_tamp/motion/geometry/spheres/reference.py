@@ -43,12 +43,6 @@ def _box_gaps(
     return gaps
 
 
-def sphere_world_centers(scene: SphereScene, qs: FloatArray) -> FloatArray:
-    """(M, S, 3) world centres of the coarse spheres at each configuration of ``qs`` (M, d)."""
-    batch = np.atleast_2d(np.asarray(qs, dtype=float))
-    return _world(scene.tree.link_poses(batch), scene.sphere_links, scene.sphere_centers)
-
-
 def reference_validity(
     scene: SphereScene, qs: FloatArray, margin: float, lower: FloatArray, upper: FloatArray
 ) -> BoolArray:

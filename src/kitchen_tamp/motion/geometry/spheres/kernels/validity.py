@@ -61,7 +61,7 @@ FloatArray = npt.NDArray[np.float64]
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def boxes_near(
+def _boxes_near(
     x: float,
     y: float,
     z: float,
@@ -250,7 +250,7 @@ def valid_rows(
             if reach <= 0.0:
                 continue
             x, y, z = group_world[g, 0], group_world[g, 1], group_world[g, 2]
-            if boxes_near(x, y, z, reach * reach, low_x, low_y, low_z, high_x, high_y, high_z) == 0:
+            if _boxes_near(x, y, z, reach * reach, low_x, low_y, low_z, high_x, high_y, high_z) == 0:
                 continue
             for b in range(boxes):
                 if unchecked[g * boxes + b] > 0.0:

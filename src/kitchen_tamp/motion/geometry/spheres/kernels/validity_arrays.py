@@ -24,7 +24,6 @@ from numba.core import types
 from numba.experimental import structref
 
 from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import STACK_DEPTH
-from kitchen_tamp.motion.geometry.spheres.kernels.walk_bounds import group_reaches, medium_spheres
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -93,11 +92,6 @@ class ValidityArrays(structref.StructRefProxy):
     high_z: FloatArray
     unchecked: FloatArray
     group_order: IntArray
-    group_reaches: FloatArray
-    medium_centers: FloatArray
-    medium_radii: FloatArray
-    medium_starts: IntArray
-    medium_stops: IntArray
 
 
 ALL_FIELDS = tuple(ValidityArrays.__annotations__)
@@ -112,40 +106,19 @@ structref.define_proxy(ValidityArrays, ValidityArraysType, list(ALL_FIELDS))  # 
 def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
     """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
     pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
-    the groups with a checked box, in the order of their first pair; `medium_spheres` and
-    `group_reaches` (of the group bounds, the medium and the coarse spheres), which the certified
-    segment walk (`certified_segments`) reads."""
+    the groups with a checked box, in the order of their first pair."""
     lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
     groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
     unchecked = np.full(groups * boxes, UNCHECKED)
     pairs = np.asarray(laid_out["group_box_pairs"]).reshape(-1, 2)
     unchecked[pairs[:, 0] * boxes + pairs[:, 1]] = 0.0
     order = list(dict.fromkeys(int(g) for g in pairs[:, 0]))
-    centers, radii = np.asarray(laid_out["sphere_centers"]), np.asarray(laid_out["sphere_radii"])
-    starts, stops = np.asarray(laid_out["group_starts"]), np.asarray(laid_out["group_stops"])
-    medium = medium_spheres(centers, radii, starts, stops)
-    group_centers = np.asarray(laid_out["group_centers"])
-    carried = [
-        np.vstack([group_centers[g], centers[starts[g] : stops[g]], medium[0][medium[2][g] : medium[3][g]]])
-        for g in range(groups)
-    ]
     return (
         np.ascontiguousarray(np.asarray(laid_out["sphere_centers"]).T),
         *(np.ascontiguousarray(lows[:, axis]) for axis in range(3)),
         *(np.ascontiguousarray(highs[:, axis]) for axis in range(3)),
         unchecked,
         np.array(order, dtype=np.int64),
-        group_reaches(
-            np.asarray(laid_out["parents"]),
-            np.asarray(laid_out["origins"]),
-            np.asarray(laid_out["kinds"]),
-            np.asarray(laid_out["variables"]),
-            np.asarray(laid_out["lower"]),
-            np.asarray(laid_out["upper"]),
-            np.asarray(laid_out["group_links"]),
-            carried,
-        ),
-        *medium,
     )
 
 
@@ -170,7 +143,6 @@ def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
 ValidityScratch = tuple[Any, ...]
 """What `valid_rows` works in (`validity_scratch`): per-configuration buffers, the stamps saying
 when a bound or sphere was last placed, and the last stamp used, so it may serve many calls."""
-
 
 @numba.njit(cache=True)
 def validity_scratch(arrays: ValidityArrays, dimension: int) -> ValidityScratch:
