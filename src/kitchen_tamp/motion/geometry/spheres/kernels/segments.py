@@ -6,7 +6,8 @@ then the interior coarse to fine; or outward from ``q0`` at multiples of the res
 return its verdict and the count it would report (the rows of its batches, which start at
 ``FIRST_BATCH_SIZE`` and double, up to the batch holding the first collision). They differ only
 in cost: one call instead of a Python loop of batches, and the validity kernel stops at the first
-invalid row. Configurations are interpolated without fastmath, so they are numpy's to the bit.
+invalid row (and a batch is interpolated only when the ones before it were free). Configurations
+are interpolated without fastmath, so they are numpy's to the bit.
 
 A caller checking many segments in compiled code (the compiled RRT-Connect loop) keeps one
 `validity_scratch` and calls `segment_checked_in` and `free_prefix_checked_in`, which work in it
@@ -28,17 +29,6 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
 from kitchen_tamp.motion.segment_checking import FIRST_BATCH_SIZE
 
 FloatArray = npt.NDArray[np.float64]
-
-
-@numba.njit(cache=True)
-def rows_through(count: int, first: int) -> int:
-    """Rows the batches over ``count`` rows check when row ``first`` (or none, -1) is the first invalid."""
-    if first < 0:
-        return count
-    stop, size = 0, FIRST_BATCH_SIZE
-    while stop <= first:
-        stop, size = stop + size, size * 2
-    return min(stop, count)
 
 
 @numba.njit(cache=True)
@@ -72,6 +62,34 @@ def _first_invalid(qs: FloatArray, arrays: ValidityArrays, margin: float, scratc
 
 
 @numba.njit(cache=True)
+def _first_invalid_in_batches(
+    q0: FloatArray,
+    q1: FloatArray,
+    shares: FloatArray,
+    arrays: ValidityArrays,
+    margin: float,
+    scratch: ValidityScratch,
+) -> tuple[int, int]:
+    """(the first invalid of the configurations ``q0 + share (q1 - q0)`` in ``shares``' order, or
+    -1; rows counted as `CountingSegmentChecker` counts them): a batch's configurations are
+    interpolated only when the batches before it were free (a failed step is often decided by its
+    first configuration)."""
+    count, dimension = shares.shape[0], q0.shape[0]
+    qs = np.empty((count, dimension))
+    start, size = 0, FIRST_BATCH_SIZE
+    while start < count:
+        stop = min(count, start + size)
+        for i in range(start, stop):
+            for j in range(dimension):
+                qs[i, j] = q0[j] + shares[i] * (q1[j] - q0[j])
+        first = _first_invalid(qs[start:stop], arrays, margin, scratch)
+        if first >= 0:
+            return start + first, stop
+        start, size = stop, size * 2
+    return -1, count
+
+
+@numba.njit(cache=True)
 def segment_checked_in(
     q0: FloatArray,
     q1: FloatArray,
@@ -84,24 +102,20 @@ def segment_checked_in(
 ) -> tuple[bool, int]:
     """`segment_checked`, working in ``scratch`` (`validity_scratch` of ``arrays``)."""
     ends = int(check_start) + int(check_end)
-    fractions = coarse_to_fine_fractions(intervals)
-    dimension = q0.shape[0]
-    qs = np.empty((ends + fractions.shape[0], dimension))
-    row = 0
-    if check_start:
-        qs[row] = q0
-        row += 1
-    if check_end:
-        qs[row] = q1
-        row += 1
-    for i in range(fractions.shape[0]):
-        for j in range(dimension):
-            qs[ends + i, j] = q0[j] + fractions[i] * (q1[j] - q0[j])
-    first = _first_invalid(qs, arrays, margin, scratch)
-    if 0 <= first < ends:
-        return False, ends
-    inner = first - ends if first >= 0 else -1
-    return first < 0, ends + rows_through(fractions.shape[0], inner)
+    if ends:
+        end_rows = np.empty((ends, q0.shape[0]))
+        row = 0
+        if check_start:
+            end_rows[row] = q0
+            row += 1
+        if check_end:
+            end_rows[row] = q1
+        if _first_invalid(end_rows, arrays, margin, scratch) >= 0:
+            return False, ends
+    first, checked = _first_invalid_in_batches(
+        q0, q1, coarse_to_fine_fractions(intervals), arrays, margin, scratch
+    )
+    return first < 0, ends + checked
 
 
 @numba.njit(cache=True)
@@ -137,14 +151,10 @@ def free_prefix_checked_in(
     for k in range(count - 1):
         lengths[k] = float(k + 1) * resolution
     lengths[count - 1] = (distance / resolution) * resolution
-    dimension = q0.shape[0]
-    qs = np.empty((count, dimension))
+    shares = np.empty(count)
     for i in range(count):
-        share = lengths[i] / distance
-        for j in range(dimension):
-            qs[i, j] = q0[j] + share * (q1[j] - q0[j])
-    first = _first_invalid(qs, arrays, margin, scratch)
-    checked = rows_through(count, first)
+        shares[i] = lengths[i] / distance
+    first, checked = _first_invalid_in_batches(q0, q1, shares, arrays, margin, scratch)
     if first < 0:
         return distance, checked
     return (lengths[first - 1] if first > 0 else 0.0), checked
