@@ -25,6 +25,7 @@ class JointInfo:
     child_link: str
     parent_index: int
     movable: bool
+    revolute: bool
     lower: float
     upper: float
 
@@ -54,6 +55,7 @@ class Body:
                 child_link=info[12].decode(),
                 parent_index=info[16],
                 movable=info[2] in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC),
+                revolute=info[2] == p.JOINT_REVOLUTE,
                 lower=float(info[8]),
                 upper=float(info[9]),
             )
@@ -62,6 +64,7 @@ class Body:
         self._link_index: dict[str, int] = {base_name: BASE_LINK} | {
             j.child_link: j.index for j in self.joints
         }
+        self._link_name = {index: name for name, index in self._link_index.items()}
         self._joint_by_name = {j.name: j for j in self.joints}
         dynamics = p.getDynamicsInfo(uid, BASE_LINK, physicsClientId=client)
         self._base_from_com = Pose.from_parts(dynamics[3], dynamics[4])
@@ -92,10 +95,10 @@ class Body:
 
     def link_name(self, index: int) -> str:
         """The name of the link with PyBullet index ``index``."""
-        for name, i in self._link_index.items():
-            if i == index:
-                return name
-        raise UnknownNameError(f"body {self.name!r} has no link index {index}")
+        try:
+            return self._link_name[index]
+        except KeyError:
+            raise UnknownNameError(f"body {self.name!r} has no link index {index}") from None
 
     def joint(self, name: str) -> JointInfo:
         """The joint called ``name``."""

@@ -1,6 +1,11 @@
 """Inverse kinematics with seeded random restarts, verified by forward kinematics,
 and straight Cartesian tool paths solved waypoint by waypoint.
 
+A tool pose the arm provably cannot reach (`world.reach`: its wrist would have to be farther
+from its shoulder than the arm stretches) is answered at once, with no solver call; the random
+starts it would have been tried from are still drawn, so every later draw is what it would
+have been.
+
 PyBullet's solver is given the arm's joint ranges (``Robot.lower``/``upper``, the stricter
 of the URDF's ``<limit>`` and ``<safety_controller>``; it knows only the first) with the
 current configuration as its rest pose, and every result is clipped into the ranges before
@@ -15,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pybullet as p
 
+from kitchen_tamp.world.reach import arm_reach
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.transforms import FloatArray, Pose, VectorLike
 
@@ -56,6 +62,9 @@ class InverseKinematics:
         self._movable_names = names
         self._limits = (lower.tolist(), upper.tolist(), (upper - lower).tolist())
         self._tool_index = body.link_index(robot.description.tool_link)
+        self.reach = arm_reach(robot, options.position_tolerance, options.orientation_tolerance)
+        self.beyond_reach = 0
+        """Tool poses answered without a solver call, as beyond the arm's reach."""
 
     def _set_arm(self, q: FloatArray) -> None:
         self.robot.body.reset_joint_positions(self.robot.description.arm_joints, list(q))
@@ -120,6 +129,11 @@ class InverseKinematics:
         drawn uniformly within the joint limits from ``rng``. The arm is back where
         it was whenever a solution is yielded and when the iterator ends.
         """
+        if self.reach is not None and self.reach.beyond(self.robot.body.base_pose(), world_from_tool):
+            self.beyond_reach += 1
+            for _ in range(self.options.restarts):  # the starts every failed one would have drawn
+                rng.uniform(self.robot.lower, self.robot.upper)
+            return
         saved = self.robot.configuration()
         starts = itertools.chain(
             (np.asarray(seed, dtype=float) for seed in seeds),

@@ -144,6 +144,13 @@ class PhysicsWorld:
         self.arm_efforts: FloatArray = np.array([effort for effort, _ in limits])
         self.arm_velocity_limits: FloatArray = np.array([velocity for _, velocity in limits])
         self.finger_velocity_limit = min(self._joint_limits(arm, i)[1] for i in self._finger_indices)
+        # the motor arguments every tick repeats, as PyBullet takes them (lists of floats)
+        count = len(self._arm_indices)
+        self._arm_forces = self.arm_efforts.tolist()
+        self._resting, self._position_gains, self._velocity_gains = (
+            [0.0] * count, [settings.position_gain] * count, [settings.velocity_gain] * count
+        )
+        self._finger_forces = [settings.grip_force] * len(self._finger_indices)
         for body in fixtures:
             self._set_material(body, body.link_indices, settings.fixture_material)
             self._make_passive(body)
@@ -214,16 +221,15 @@ class PhysicsWorld:
     ) -> None:
         """Position targets (and feed-forward velocities) for the arm joints, bounded by the
         URDF efforts."""
-        count = len(self._arm_indices)
         p.setJointMotorControlArray(
             self.robot.body.uid,
             self._arm_indices,
             p.POSITION_CONTROL,
-            targetPositions=[float(v) for v in q],
-            targetVelocities=[0.0] * count if qd is None else [float(v) for v in qd],
-            forces=self.arm_efforts.tolist(),
-            positionGains=[self.settings.position_gain] * count,
-            velocityGains=[self.settings.velocity_gain] * count,
+            targetPositions=np.asarray(q, dtype=float).tolist(),
+            targetVelocities=self._resting if qd is None else np.asarray(qd, dtype=float).tolist(),
+            forces=self._arm_forces,
+            positionGains=self._position_gains,
+            velocityGains=self._velocity_gains,
             physicsClientId=self.client,
         )
 
@@ -231,14 +237,14 @@ class PhysicsWorld:
         """Fingers to ``planned_width`` apart, each finger's force bounded by ``grip_force``; with
         ``press`` (they hold something), ``grip_squeeze`` narrower, so that they press on it."""
         target = planned_width - self.settings.grip_squeeze if press else planned_width
-        target = float(np.clip(target, 0.0, self.robot.max_gripper_width))
+        target = min(max(float(target), 0.0), self.robot.max_gripper_width)
         count = len(self._finger_indices)
         p.setJointMotorControlArray(
             self.robot.body.uid,
             self._finger_indices,
             p.POSITION_CONTROL,
             targetPositions=[target / count] * count,
-            forces=[self.settings.grip_force] * count,
+            forces=self._finger_forces,
             physicsClientId=self.client,
         )
 
@@ -248,6 +254,11 @@ class PhysicsWorld:
         for _ in range(count):
             p.stepSimulation(physicsClientId=self.client)
         self.time += count * self.settings.time_step
+
+    def arm_positions(self) -> FloatArray:
+        """Positions of the arm joints."""
+        states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
+        return np.array([s[0] for s in states])
 
     def arm_state(self) -> tuple[FloatArray, FloatArray]:
         """(positions, velocities) of the arm joints."""
@@ -269,12 +280,18 @@ class PhysicsWorld:
         contacts = p.getContactPoints(bodyA=body.uid, bodyB=other.uid, physicsClientId=self.client)
         return frozenset(other.link_name(c[4]) for c in contacts)
 
-    def robot_contacts(self) -> list[RobotContact]:
-        """Every contact point of the robot with another body after the last step."""
+    def robot_contacts(self, min_force: float | None = None) -> list[RobotContact]:
+        """Every contact point of the robot with another body after the last step (only those
+        pressing harder than ``min_force`` newtons, if given)."""
         robot = self.robot.body
+        contacts = p.getContactPoints(bodyA=robot.uid, physicsClientId=self.client)
+        if min_force is not None:
+            contacts = [contact for contact in contacts if contact[9] > min_force]
+        if not contacts:
+            return []
         names = {body.uid: body for body in self.scene.bodies}
         found = []
-        for contact in p.getContactPoints(bodyA=robot.uid, physicsClientId=self.client):
+        for contact in contacts:
             other = names.get(contact[2])
             if other is None or other is robot:
                 continue

@@ -121,9 +121,8 @@ class Rollout:
 
     # -- what the robot touches and how well it follows -------------------------------------------
     def watch_contacts(self, figures: ActionFigures, label: str, intended: Sequence[AllowedContact]) -> None:
-        for contact in self.world.robot_contacts():
-            pressing = contact.normal_force > self.tolerances.contact_force_n
-            if contact.robot_link == self.base_link or not pressing:
+        for contact in self.world.robot_contacts(min_force=self.tolerances.contact_force_n):
+            if contact.robot_link == self.base_link:
                 continue
             if any(c.allows(contact.robot_link, contact.body, contact.link) for c in intended):
                 continue
@@ -140,8 +139,7 @@ class Rollout:
     def watch_tracking(
         self, figures: ActionFigures, label: str, commanded: np.ndarray, waypoint: int
     ) -> None:
-        actual, _ = self.world.arm_state()
-        lag = np.abs(actual - commanded)
+        lag = np.abs(self.world.arm_positions() - commanded)
         error = float(np.max(lag))
         figures.max_joint_error_rad = max(figures.max_joint_error_rad, error)
         if error > self.tolerances.tracking_rad:
