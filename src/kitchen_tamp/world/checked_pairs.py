@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import functools
 import itertools
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Final
 
@@ -257,14 +257,16 @@ class CheckedPairs:
         """Current bounds of the links the arm does not move (read again only when they move)."""
         return self.bounds(self.static_rows)
 
-    def candidates(self, horizon: float, static_bounds: FloatArray) -> list[tuple[int, float]]:
+    def candidates(self, horizon: float, static_bounds: FloatArray) -> Iterator[tuple[int, float]]:
         """(pair, gap between its bounds) for the pairs whose bounds come within ``horizon``,
-        the most overlapping first."""
+        the most overlapping first (made as they are asked for: a caller measuring the nearest
+        pairs stops after a few)."""
         table = np.concatenate([self.bounds(self.moving_rows), static_bounds])
         gaps = (table.take(self._gap_minuends) - table.take(self._gap_subtrahends)).reshape(6, -1).max(axis=0)
-        near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
-        near = near[np.argsort(gaps[near], kind="stable")]
-        return list(zip(near.tolist(), gaps[near].tolist(), strict=True))
+        order = np.argsort(gaps, kind="stable")
+        ordered = gaps[order]
+        near = int(np.searchsorted(ordered, horizon + BOUNDS_SLACK, side="right"))
+        return zip(order[:near].tolist(), ordered[:near].tolist(), strict=True)
 
 
 
