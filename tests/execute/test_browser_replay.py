@@ -24,7 +24,7 @@ from kitchen_tamp.execute.render.browser_replay import (
     write_timeline_replay,
 )
 from kitchen_tamp.execute.render.scene_recording import SceneRecorder, SceneRecording
-from kitchen_tamp.execute.render.untextured_meshes import untextured_obj_text
+from kitchen_tamp.execute.render.untextured_meshes import material_library_names, untextured_obj_text
 from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
@@ -131,6 +131,20 @@ def test_meshes_lose_only_their_texture_coordinates() -> None:
     faces = [line for line in converted.splitlines() if line.startswith("f ")]
     assert faces and all(re.fullmatch(r"f( \d+(//\d+)?)+", face) for face in faces)
     assert not any(line.startswith("vt") for line in converted.splitlines())
+
+
+def test_material_libraries_are_read_as_a_regular_expression_reads_them() -> None:
+    every_line = re.compile(r"^mtllib[ \t]+(.*?)\s*$", re.MULTILINE)
+    texts = [
+        "mtllib first.mtl\nv 1 2 3\n  mtllib indented.mtl\nusemtl mtllib\nmtllib  spaced.mtl \r\nmtllib",
+        "v 0 0 0\n# mtllib commented.mtl\nmtllib\tlast.mtl",
+        "",
+    ]
+    panda_meshes = Path(panda_urdf_path()).parent / "meshes" / "visual"
+    texts += [mesh.read_text(errors="replace") for mesh in sorted(panda_meshes.glob("*.obj"))]
+    for text in texts:
+        assert material_library_names(text) == every_line.findall(text)
+    assert material_library_names(texts[0]) == ["first.mtl", "spaced.mtl"]
 
 
 @pytest.mark.slow

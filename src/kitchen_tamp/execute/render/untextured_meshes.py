@@ -72,12 +72,26 @@ def _kept_copy(obj: Path, libraries: frozenset[str]) -> str:
     return text
 
 
+def material_library_names(text: str) -> list[str]:
+    """What the ``mtllib`` lines of the OBJ ``text`` name, in order (the lines found with
+    ``str.find``: the regular expression over the whole of the Panda's 9 MB of meshes took 80 ms
+    of every ``replay.html``)."""
+    names = []
+    at = text.find("mtllib")
+    while at >= 0:
+        end = text.find("\n", at)
+        if at == 0 or text[at - 1] == "\n":
+            names += _MATERIAL_LIBRARY.findall(text[at : len(text) if end < 0 else end])
+        at = text.find("mtllib", at + len("mtllib"))
+    return names
+
+
 @lru_cache(maxsize=32)
 def untextured_obj_mesh(path: str) -> InMemoryMesh:
     """The OBJ file at ``path`` and the material libraries it names, untextured, in memory."""
     obj = Path(path)
     libraries = {}
-    for name in _MATERIAL_LIBRARY.findall(obj.read_text(errors="replace")):
+    for name in material_library_names(obj.read_text(errors="replace")):
         if (obj.parent / name).is_file():
             libraries[name] = MemoryFile(
                 untextured_mtl_text((obj.parent / name).read_text(errors="replace")), ".mtl", name
