@@ -6,9 +6,9 @@ the parent waits for physics and writes replay.html and joints.png: that splits
 the work about evenly. Without a GIF, the child draws joints.png.
 The child inherits what it needs (the task, the kitchen map and, if known, the
 timeline) by the fork and sends back what it wrote, or the traceback of what went
-wrong. A job without a timeline starts the child at once: it loads matplotlib (when
-it plots) and builds its kitchen (when it draws the GIF) while the judge reads the
-plan, then waits for the timeline (`PendingPictures.draw`).
+wrong. A job without a timeline starts the child at once: it builds its kitchen (when
+it draws the GIF) while the judge reads the plan, then waits for the timeline
+(`PendingPictures.draw`).
 Where processes cannot be forked, the pictures are drawn in this process when
 their result is asked for.
 """
