@@ -160,7 +160,15 @@ class HeadlessChromium:
             except subprocess.TimeoutExpired:
                 self._process.kill()
                 self._process.wait()
-        self._profile.cleanup()
+        # Chromium's helper processes can still write into the profile for a moment after the
+        # browser itself has exited ("Directory not empty"): try again for a while.
+        for _ in range(20):
+            try:
+                self._profile.cleanup()
+                return
+            except OSError:
+                time.sleep(0.1)
+        shutil.rmtree(self._profile.name, ignore_errors=True)
 
     def __enter__(self) -> HeadlessChromium:
         return self
