@@ -260,11 +260,6 @@ class PhysicsWorld:
         states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
         return np.array([s[0] for s in states])
 
-    def arm_state(self) -> tuple[FloatArray, FloatArray]:
-        """(positions, velocities) of the arm joints."""
-        states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
-        return np.array([s[0] for s in states]), np.array([s[1] for s in states])
-
     def finger_speed(self) -> float:
         """Fastest finger joint speed (m/s)."""
         states = p.getJointStates(self.robot.body.uid, self._finger_indices, physicsClientId=self.client)
