@@ -1,7 +1,9 @@
 """What a user waits for ``final_project.py``: two checkouts, whole processes, alternating.
 
 Each case starts ``final_project.py`` as a fresh process in each checkout in turn
-(so that a slow spell of the shared machine hits both alike), ``--runs`` times,
+(so that a slow spell of the shared machine hits both alike), with the checkout's
+``src`` first on ``PYTHONPATH`` (so a checkout sharing another's virtual environment
+still runs its own code), ``--runs`` times,
 and prints the median wall time and CPU time (user + system, the process and its
 children) of each, their ratio (base / ours), and the median of the phases the
 run's ``report.json`` gives under ``timing``. Cases:
@@ -121,7 +123,7 @@ def _run_once(checkout: Checkout, case: str, args: argparse.Namespace, scratch: 
             wall, _, _ = _timed([str(checkout.python), "-m", PREPARE_MODULE], root, env)
             timings.prepare.append(wall)
     else:
-        root, env = checkout.root, _environment(scratch / f"cache-{checkout.label}")
+        root, env = checkout.root, _environment(scratch / f"cache-{checkout.label}", checkout.root / "src")
     command = [str(checkout.python), "final_project.py", mode, "--problem", args.problem,
                "--seed", str(args.seed), "--out", str(out), *options]
     wall, cpu, code = _timed(command, root, env)
@@ -189,7 +191,8 @@ def same_reports(base: Checkout, ours: Checkout, args: argparse.Namespace, scrat
                     out = scratch / f"{checkout.label}-{Path(problem).stem}-{mode}-{seed}"
                     command = [str(checkout.python), "final_project.py", mode, "--problem", problem,
                                "--seed", str(seed), "--out", str(out), "--no-video"]
-                    _timed(command, checkout.root, _environment(scratch / f"cache-{checkout.label}"))
+                    env = _environment(scratch / f"cache-{checkout.label}", checkout.root / "src")
+                    _timed(command, checkout.root, env)
                     reports.append(_comparable(json.loads((out / "report.json").read_text())))
                 same = reports[0] == reports[1]
                 all_same &= same

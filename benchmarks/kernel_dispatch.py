@@ -27,7 +27,7 @@ from numba.experimental import jitclass, structref
 
 from kitchen_tamp.motion import CountingSegmentChecker
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import VALIDITY_FIELDS
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import VALIDITY_FIELDS
 
 FloatArray = npt.NDArray[np.float64]
 ARRAYS = 42

@@ -15,12 +15,8 @@ from kitchen_tamp.motion import CountingSegmentChecker
 from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.motion.geometry.primitive_scene import PrimitiveObstacle, arm_among_obstacles, rotation_rpy
 from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
-from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
-    SHAPE_BOX,
-    SHAPE_CYLINDER,
-    SHAPE_SPHERE,
-    box_gap_at,
-)
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import SHAPE_BOX, SHAPE_CYLINDER, SHAPE_SPHERE
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import box_gap_at
 from kitchen_tamp.motion.geometry.spheres.kernels.segments import (
     coarse_to_fine_fractions,
     free_prefix_checked_in,

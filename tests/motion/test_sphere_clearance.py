@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.kitchen import KitchenScene, sample_targets
-from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
+from kitchen_tamp.motion.geometry.spheres.clearance import HINGE_AT_FLOOR, SphereClearance
 from kitchen_tamp.motion.geometry.spheres.distances import pair_distances
-from kitchen_tamp.motion.geometry.spheres.kernels.clearance import HINGE_AT_FLOOR
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.world.scene_description import describe_collision_checker
 

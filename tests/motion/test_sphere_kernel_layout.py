@@ -10,13 +10,9 @@ import numpy as np
 import pytest
 
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import FIXED, PRISMATIC, REVOLUTE, REVOLUTE_Z, SKIPPED
 from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments
 from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
-    FIXED,
-    PRISMATIC,
-    REVOLUTE,
-    REVOLUTE_Z,
-    SKIPPED,
     folded_link_poses,
     joint_sines_cosines,
     place_point,

@@ -13,7 +13,9 @@ kitchen's sphere model. The activity planner's relaxed exploration
 (``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
 (``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
 the default kitchen's task, and the search once more ahead of time into an
-extension module that runs without numba (``greedy_ahead``).
+extension module that runs without numba (``greedy_ahead``); so are the sphere model's
+validity and clearance kernels, which is all a kitchen run calls
+(``motion.geometry.spheres.kernels.ahead_of_time``): such a run never imports numba.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ import os
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -38,6 +41,7 @@ def _compile_kernels() -> None:
     from kitchen_tamp.kitchen import build_kitchen_for_task
     from kitchen_tamp.kitchen.scene.choice import choose_scene
     from kitchen_tamp.motion.geometry.spheres import SphereClearance, SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.kernels.loading import serve_jit_kernels
     from kitchen_tamp.planning import load_task
     from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
     from kitchen_tamp.world import describe_collision_checker
@@ -47,12 +51,38 @@ def _compile_kernels() -> None:
     with build_kitchen_for_task(task, kitchen_map=choice.kitchen_map()) as kitchen:
         description = describe_collision_checker(kitchen.collision_checker())
         home = np.atleast_2d(kitchen.arm_configuration())
+    serve_jit_kernels()  # into numba's cache, whether or not a module compiled ahead of time serves runs
     checker = SphereCollisionChecker(description)
     checker.is_valid(home)
     checker.is_valid_without_padding(home)
     SphereClearance(checker.model, 0.005, ends=home)(home)
     _compile_rrt_connect_loop(checker, home[0])
+    _compile_sphere_kernels_ahead_of_time(checker, home)
     _compile_planning_kernels(task)
+
+
+def _compile_sphere_kernels_ahead_of_time(
+    checker: SphereCollisionChecker, home: npt.NDArray[np.float64]
+) -> None:
+    """The validity and clearance kernels into the module a run loads without numba
+    (`kernels.loading`), with the signatures of their JIT runs on the default kitchen (the
+    clearance's ran above)."""
+    from kitchen_tamp.motion.geometry.spheres.kernels.ahead_of_time import compile_ahead_of_time
+    from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations_of_fields
+    from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import with_derived
+
+    valid_configurations_of_fields(with_derived(checker.kernel_arguments), home, checker.margin, False)
+    _ahead_of_time("the sphere model's kernels", compile_ahead_of_time)
+
+
+def _ahead_of_time(what: str, compile_module: Callable[[], object]) -> None:
+    """Compile ``what`` ahead of time, or say why not (the run then uses numba's JIT, the same code)."""
+    try:
+        compile_module()
+    except Exception as error:  # e.g. a read-only install or no C compiler
+        reason = " ".join(str(error).split())
+        print(f"not compiled ahead of time: {what} ({type(error).__name__}: {reason}); "
+              "runs will use numba's JIT, the same code")
 
 
 def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
@@ -83,18 +113,15 @@ def _compile_planning_kernels(task: Task) -> None:
     evaluator.compiled_after_work = -1  # through the kernels from the first state
     evaluator.root()
     compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
-    try:
-        compile_ahead_of_time()  # with the signature of that run
-    except Exception as error:  # e.g. a read-only install or no C compiler: the search uses the JIT kernel
-        reason = " ".join(str(error).split())
-        print(f"the greedy search was not compiled ahead of time ({type(error).__name__}: {reason}); "
-              "it will run through numba's JIT, the same code")
+    _ahead_of_time("the greedy search's kernel", compile_ahead_of_time)  # with the signature of that run
 
 
 def main() -> int:
     clock = time.perf_counter()
     # numba decides where its cache goes when the kernels are imported: before the cache moves
     import kitchen_tamp.motion.geometry.spheres
+    import kitchen_tamp.motion.geometry.spheres.kernels.clearance
+    import kitchen_tamp.motion.geometry.spheres.kernels.segments
     import kitchen_tamp.motion.sampling.rrt_connect_kernel
     import kitchen_tamp.planning.relaxed_kernel
     import kitchen_tamp.planning.search.greedy_kernel  # noqa: F401

@@ -17,7 +17,7 @@ colliding the model finds colliding; the reverse may not hold near contact.
 from __future__ import annotations
 
 import copy
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -32,21 +32,17 @@ from kitchen_tamp.motion.geometry.spheres.distances import (
     pair_distances_and_gradients,
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.layout import kernel_arguments, with_pair_tables
-from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked, segment_checked
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays, validity_arrays
+from kitchen_tamp.motion.geometry.spheres.kernels.loading import PackedValidity, sphere_kernels
 from kitchen_tamp.motion.geometry.spheres.pair_tables import pair_tables
 from kitchen_tamp.motion.geometry.spheres.reference import reference_validity
 from kitchen_tamp.motion.geometry.spheres.scene import PYBULLET_MESH_MARGIN, SphereScene
 from kitchen_tamp.motion.geometry.urdf import read_urdf
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
-FloatArray = npt.NDArray[np.float64]
+if TYPE_CHECKING:  # the real import loads numba, which a run served ahead of time never needs
+    from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
 
-_VALID_CONFIGURATIONS: Any = valid_configurations
-"""The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
-_SEGMENT_CHECKED: Any = segment_checked
-_FREE_PREFIX_CHECKED: Any = free_prefix_checked
+FloatArray = npt.NDArray[np.float64]
 
 
 class SphereCollisionChecker:
@@ -73,7 +69,9 @@ class SphereCollisionChecker:
         self.segment_resolution = float(segment_resolution)
         self._segments = CountingSegmentChecker(self, segment_resolution)
         self._kernel_arguments = self._arrays()
-        self._arrays_packed = validity_arrays(self._kernel_arguments)
+        self._kernels = sphere_kernels()
+        self._packed = self._kernels.pack(self._kernel_arguments)
+        self._jit_packed: ValidityArrays | None = None
         self.padding = self._padding_per_group(scene, mesh_padding)
         """(groups,) how much each group's spheres were padded beyond its collision hulls (m): the mesh
         margin PyBullet adds and a model of the bare hulls (Drake's) does not."""
@@ -101,6 +99,11 @@ class SphereCollisionChecker:
         twin._segments = CountingSegmentChecker(twin, self.segment_resolution)
         return twin
 
+    @property
+    def kernel_arguments(self) -> tuple[Any, ...]:
+        """The validity kernel's arrays, in `validity_fields.VALIDITY_FIELDS` order."""
+        return self._kernel_arguments
+
     def _arrays(self) -> tuple[Any, ...]:
         """The kernel's arguments, with tables proved at this checker's margin for the self pairs
         two joints place (`sphere_pair_tables`)."""
@@ -110,7 +113,7 @@ class SphereCollisionChecker:
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
         """Per row of ``qs`` (n, 7): within the arm's limits and no checked pair closer than the margin."""
         batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
-        valid = _VALID_CONFIGURATIONS(batch, self._arrays_packed, self.margin, False)
+        valid = self._kernels.valid(batch, self._packed, self.margin, False)
         return np.asarray(valid, dtype=np.bool_)
 
     def first_invalid(self, qs: JointConfigurations) -> int | None:
@@ -119,13 +122,18 @@ class SphereCollisionChecker:
         batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
         if len(batch) == 0:
             return None
-        valid = _VALID_CONFIGURATIONS(batch, self._arrays_packed, self.margin, True)
+        valid = self._kernels.valid(batch, self._packed, self.margin, True)
         first = int(np.argmin(valid))
         return None if valid[first] else first
 
     def compiled_validity(self) -> tuple[ValidityArrays, float]:
-        """`CompiledValidity`: the packed kernel arrays and the margin (every verdict is compiled)."""
-        return self._arrays_packed, self.margin
+        """`CompiledValidity`: the packed kernel arrays and the margin (every verdict is compiled), as
+        the JIT kernels take them (packed on first use: a kitchen run never asks)."""
+        if self._jit_packed is None:
+            from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_arrays
+
+            self._jit_packed = validity_arrays(self._kernel_arguments)
+        return self._jit_packed, self.margin
 
     def segment_checked(
         self,
@@ -136,18 +144,24 @@ class SphereCollisionChecker:
         check_end: bool,
     ) -> tuple[bool, int]:
         """`CompiledSegments.segment_checked` in one compiled call (`sphere_segments`)."""
+        from kitchen_tamp.motion.geometry.spheres.kernels.segments import segment_checked
+
         start, end = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(q1, dtype=float)
-        arrays, margin = self._arrays_packed, self.margin
-        free, checked = _SEGMENT_CHECKED(start, end, intervals, check_start, check_end, arrays, margin)
+        arrays, margin = self.compiled_validity()
+        kernel: Any = segment_checked  # numba's dispatcher stubs take no argument list
+        free, checked = kernel(start, end, intervals, check_start, check_end, arrays, margin)
         return bool(free), int(checked)
 
     def free_prefix_checked(
         self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
     ) -> tuple[float, int]:
         """`CompiledSegments.free_prefix_checked` in one compiled call (`sphere_segments`)."""
+        from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked
+
         start, end = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(q1, dtype=float)
-        arrays, margin = self._arrays_packed, self.margin
-        length, checked = _FREE_PREFIX_CHECKED(start, end, distance, resolution, arrays, margin)
+        arrays, margin = self.compiled_validity()
+        kernel: Any = free_prefix_checked  # numba's dispatcher stubs take no argument list
+        length, checked = kernel(start, end, distance, resolution, arrays, margin)
         return float(length), int(checked)
 
     def is_valid_without_padding(self, qs: JointConfigurations) -> ValidityMask:
@@ -161,10 +175,12 @@ class SphereCollisionChecker:
             rows = np.flatnonzero(valid)
             if len(rows) == 0:
                 break
-            valid[rows] = _VALID_CONFIGURATIONS(batch[rows], arguments, self.margin - offset, False)
+            valid[rows] = self._kernels.valid(
+                np.ascontiguousarray(batch[rows]), arguments, self.margin - offset, False
+            )
         return valid
 
-    def _unpadded_passes(self) -> list[tuple[float, ValidityArrays]]:
+    def _unpadded_passes(self) -> list[tuple[float, PackedValidity]]:
         """Kernel arguments per margin offset, each with the pairs whose padding sums to it."""
         *shared, box_pairs, group_pairs = self._kernel_arguments
         box_offsets = self.padding[box_pairs[:, 0]]
@@ -173,7 +189,7 @@ class SphereCollisionChecker:
         for offset in sorted(set(box_offsets.tolist()) | set(pair_offsets.tolist())):
             boxes = np.ascontiguousarray(box_pairs[box_offsets == offset])
             groups = np.ascontiguousarray(group_pairs[pair_offsets == offset])
-            passes.append((offset, validity_arrays((*shared, boxes, groups))))
+            passes.append((offset, self._kernels.pack((*shared, boxes, groups))))
         return passes
 
     def is_valid_uncompiled(self, qs: JointConfigurations) -> ValidityMask:

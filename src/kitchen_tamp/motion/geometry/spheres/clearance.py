@@ -29,16 +29,17 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.distances import SpherePairs, pair_distances
-from kitchen_tamp.motion.geometry.spheres.kernels.clearance import HINGE_AT_FLOOR, clearance_penalties
+from kitchen_tamp.motion.geometry.spheres.kernels.loading import sphere_kernels
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 
 FloatArray = npt.NDArray[np.float64]
 
+HINGE_AT_FLOOR = float(np.exp(-1.0))
+"""The kernel's hinge ``phi(-1)`` (`kernels.clearance`): the penalty of one pair exactly at its floor,
+the most the sum may reach."""
 DEFAULT_INFLUENCE_WIDTH = 0.01
 """Pairs further than this (m) beyond their floor do not count (Drake's default influence offset)."""
 
-_CLEARANCE_PENALTIES: Any = clearance_penalties
-"""The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
 
 
 def _offsets(sizes: list[int]) -> npt.NDArray[np.int64]:
@@ -112,7 +113,8 @@ class SphereClearance:
         """The kernel's summed hinge penalties (M,) and their gradients (M, n)."""
         batch = np.ascontiguousarray(np.atleast_2d(np.asarray(qs, dtype=float)))
         self.evaluations += len(batch)
-        penalties, gradients = _CLEARANCE_PENALTIES(batch, *self._arguments, self.floors, self.width)
+        kernel = sphere_kernels().clearance_penalties
+        penalties, gradients = kernel(batch, self._arguments, self.floors, self.width)
         return np.asarray(penalties), np.asarray(gradients)
 
     def __call__(self, qs: FloatArray) -> tuple[FloatArray, FloatArray]:

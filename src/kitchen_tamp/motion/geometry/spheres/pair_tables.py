@@ -31,8 +31,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_arrays
+from kitchen_tamp.motion.geometry.spheres.kernels.loading import sphere_kernels
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_pair_cells, save_pair_cells
 
@@ -47,7 +46,6 @@ MAX_CELLS = 600_000
 """Cells per table at most (a pair needing more gets no table)."""
 _BOUNDARY_SLACK = 1e-6
 """Added to the raised margin: the kernel accepts joint values a hair outside the limits."""
-_KERNEL: Any = valid_configurations
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,21 +178,11 @@ def _prove_cells(
     qs = np.tile((lower + upper) / 2.0, (int(counts[0] * counts[1]), 1))
     qs[:, variables[0]] = np.repeat(first, counts[1])
     qs[:, variables[1]] = np.tile(second, counts[0])
-    return np.asarray(
-        _KERNEL(
-            np.ascontiguousarray(qs),
-            validity_arrays(
-                (
-                    *shared,
-                    np.zeros((0, 2), dtype=np.int64),
-                    np.concatenate([pair, [-1]]).reshape(1, 3).astype(np.int64),
-                )
-            ),
-            raised_margin,
-            False,
-        ),
-        dtype=np.bool_,
-    )
+    kernels = sphere_kernels()
+    no_box_pairs = np.zeros((0, 2), dtype=np.int64)
+    alone = (*shared, no_box_pairs, np.concatenate([pair, [-1]]).reshape(1, 3).astype(np.int64))
+    valid = kernels.valid(np.ascontiguousarray(qs), kernels.pack(alone), raised_margin, False)
+    return np.asarray(valid, dtype=np.bool_)
 
 
 @functools.lru_cache(maxsize=64)

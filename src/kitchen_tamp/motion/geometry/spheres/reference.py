@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.primitives import SHAPE_CYLINDER, SHAPE_SPHERE
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import SHAPE_CYLINDER, SHAPE_SPHERE
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 
 FloatArray = npt.NDArray[np.float64]

@@ -45,7 +45,7 @@ from kitchen_tamp.motion.geometry.spheres.covering import (
     cover_with_spheres,
     mesh_hull_polytope,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.primitives import SHAPE_BOX, SHAPE_KINDS
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import SHAPE_BOX, SHAPE_KINDS
 from kitchen_tamp.motion.geometry.spheres.kinematics import KinematicTree
 from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_covering, save_covering
 from kitchen_tamp.motion.geometry.spheres.tight_covering import TIGHT_COVERING_TOLERANCE, cover_tightly

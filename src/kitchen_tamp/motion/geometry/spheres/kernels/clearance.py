@@ -19,13 +19,14 @@ joint the sphere's link depends on). Compiled by numba, cached on disk like `sph
 
 from __future__ import annotations
 
+from typing import Any
+
 import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import PRISMATIC, REVOLUTE
 from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
-    PRISMATIC,
-    REVOLUTE,
     aabb_gap,
     distance,
     link_poses,
@@ -34,10 +35,6 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
-
-HINGE_AT_FLOOR = float(np.exp(-1.0))
-"""``phi(-1)``: the penalty of one pair exactly at its floor, the most the sum may reach."""
-
 
 @numba.njit(cache=True, fastmath=True, inline="always")
 def _hinge(x: float) -> tuple[float, float]:
@@ -208,3 +205,13 @@ def clearance_penalties(
                     rate += axis_world[0] * f[0] + axis_world[1] * f[1] + axis_world[2] * f[2]
             gradients[m, j] = rate
     return penalties, gradients
+
+
+@numba.njit(cache=True)
+def clearance_penalties_of_arguments(
+    qs: FloatArray, arguments: tuple[Any, ...], floors: FloatArray, width: float
+) -> tuple[FloatArray, FloatArray]:
+    """`clearance_penalties` with the model's arrays (from ``root`` to ``sphere_pair_offsets``) as one
+    tuple: what `kernels.loading` calls, and what the module compiled ahead of time exports (a wrapper,
+    so that ``pycc`` compiles the kernel itself with its own flags: see `kernels.ahead_of_time`)."""
+    return clearance_penalties(qs, *arguments, floors, width)  # type: ignore[call-arg]

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from kitchen_tamp.motion.geometry.spheres.kernels.primitives import FIXED, REVOLUTE, REVOLUTE_Z, SKIPPED
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import FIXED, REVOLUTE, REVOLUTE_Z, SKIPPED
 from kitchen_tamp.motion.geometry.spheres.kinematics import TreeLayout
 from kitchen_tamp.motion.geometry.spheres.pair_tables import PairTables, no_tables
 from kitchen_tamp.motion.geometry.spheres.scene import SphereGroup, SphereScene

@@ -22,13 +22,17 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba.core import cgutils
 from numba.extending import intrinsic
 
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import (
+    FIXED,
+    REVOLUTE,
+    REVOLUTE_Z,
+    SHAPE_CYLINDER,
+    SHAPE_SPHERE,
+    SKIPPED,
+)
+
 FloatArray = npt.NDArray[np.float64]
 
-FIXED, REVOLUTE, PRISMATIC = 0, 1, 2
-SHAPE_BOX, SHAPE_SPHERE, SHAPE_CYLINDER = 0, 1, 2
-"""Obstacle kinds (`sphere_scene.ObstacleBoxes.kinds`): their half extents are a box's, a sphere's
-radius thrice, a cylinder's radius twice and half its length (axis z)."""
-SHAPE_KINDS = {"box": SHAPE_BOX, "sphere": SHAPE_SPHERE, "cylinder": SHAPE_CYLINDER}
 
 
 @numba.njit(cache=True, fastmath=True, inline="always")
@@ -103,9 +107,6 @@ def world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
         out[k] = pose[k, 0] * local[0] + pose[k, 1] * local[1] + pose[k, 2] * local[2] + pose[k, 3]
 
 
-SKIPPED, REVOLUTE_Z = -1, 3
-"""Link kinds only the validity kernel's folded layout has (`sphere_kernel_layout`): a fixed link
-folded into its moving ancestor (no pose computed), a revolute joint about its frame's z axis."""
 
 # The functions below take arrays and row indices, never rows: a row taken from an array in a hot
 # loop is a view whose reference count numba updates atomically, which costs more than the

@@ -1,7 +1,7 @@
 """Every array the validity kernel reads, as one argument: a numba structref.
 
 `sphere_kernel_layout.kernel_arguments` lays the arrays out as a tuple in ``VALIDITY_FIELDS``
-order; `validity_arrays` packs such a tuple into a `ValidityArrays`, which
+order (`sphere_validity_fields`); `validity_arrays` packs such a tuple into a `ValidityArrays`, which
 `sphere_kernels.valid_configurations` takes as one argument and unpacks once per call; the
 tables the kernel once derived in every call from the arrays (``_derived``) are packed with them.
 
@@ -24,6 +24,7 @@ from numba.core import types
 from numba.experimental import structref
 
 from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import STACK_DEPTH
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import ALL_FIELDS, with_derived
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -94,32 +95,10 @@ class ValidityArrays(structref.StructRefProxy):
     group_order: IntArray
 
 
-ALL_FIELDS = tuple(ValidityArrays.__annotations__)
-VALIDITY_FIELDS = ALL_FIELDS[: ALL_FIELDS.index("coarse_local")]
-"""The kernel's arrays by name, in the order `kernel_arguments` lays them out."""
-UNCHECKED = 1e300
-"""Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
+if tuple(ValidityArrays.__annotations__) != ALL_FIELDS:
+    raise ImportError("ValidityArrays' fields are not validity_fields.ALL_FIELDS, in that order")
 
 structref.define_proxy(ValidityArrays, ValidityArraysType, list(ALL_FIELDS))  # type: ignore[no-untyped-call]
-
-
-def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
-    """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
-    pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
-    the groups with a checked box, in the order of their first pair."""
-    lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
-    groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
-    unchecked = np.full(groups * boxes, UNCHECKED)
-    pairs = np.asarray(laid_out["group_box_pairs"]).reshape(-1, 2)
-    unchecked[pairs[:, 0] * boxes + pairs[:, 1]] = 0.0
-    order = list(dict.fromkeys(int(g) for g in pairs[:, 0]))
-    return (
-        np.ascontiguousarray(np.asarray(laid_out["sphere_centers"]).T),
-        *(np.ascontiguousarray(lows[:, axis]) for axis in range(3)),
-        *(np.ascontiguousarray(highs[:, axis]) for axis in range(3)),
-        unchecked,
-        np.array(order, dtype=np.int64),
-    )
 
 
 @numba.njit(cache=True)
@@ -133,10 +112,7 @@ def _pack(fields: tuple[Any, ...]) -> ValidityArrays:
 def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
     """``arguments`` (in ``VALIDITY_FIELDS`` order) as one `ValidityArrays`, with the tables the
     kernel derives from them."""
-    if len(arguments) != len(VALIDITY_FIELDS):
-        raise ValueError(f"expected {len(VALIDITY_FIELDS)} kernel arrays, got {len(arguments)}")
-    derived = _derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True)))
-    packed: ValidityArrays = _pack((*arguments, *derived))
+    packed: ValidityArrays = _pack(with_derived(arguments))
     return packed
 
 

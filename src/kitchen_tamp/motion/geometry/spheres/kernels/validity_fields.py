@@ -1,0 +1,60 @@
+"""The validity kernel's arrays by name, and the tables derived from them once per model.
+
+Numba-free, so that a run served by the kernels compiled ahead of time (`sphere_kernel_loading`)
+lays its arguments out without importing numba: `with_derived` gives the plain tuple, in
+``ALL_FIELDS`` order, that such a kernel packs itself; `validity_arrays` packs the same tuple
+into numba's structref for the JIT kernels.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+VALIDITY_FIELDS = (
+    "lower", "upper", "root", "parents", "origins", "kinds", "axes", "variables",
+    "group_links", "group_centers", "group_radii", "group_starts", "group_stops",
+    "sphere_links", "sphere_centers", "sphere_radii",
+    "group_roots", "node_links", "node_centers", "node_radii", "node_children", "node_first", "node_last",
+    "fine_links", "fine_centers", "fine_radii",
+    "box_rotations", "box_centers", "box_halves", "box_kinds", "box_lows", "box_highs",
+    "table_variables", "table_lows", "table_steps", "table_counts", "table_offsets", "table_cells",
+    "table_margin", "group_box_pairs", "group_pairs",
+)  # fmt: skip
+"""The kernel's arrays by name, in the order `kernel_arguments` lays them out."""
+DERIVED_FIELDS = (
+    "coarse_local", "low_x", "low_y", "low_z", "high_x", "high_y", "high_z", "unchecked", "group_order",
+)  # fmt: skip
+"""What `with_derived` adds, so that a call need not derive it."""
+ALL_FIELDS = VALIDITY_FIELDS + DERIVED_FIELDS
+"""Every field the kernel reads, in the order a packed tuple holds them."""
+UNCHECKED = 1e300
+"""Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
+
+
+def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
+    """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
+    pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
+    the groups with a checked box, in the order of their first pair."""
+    lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
+    groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
+    unchecked = np.full(groups * boxes, UNCHECKED)
+    pairs = np.asarray(laid_out["group_box_pairs"]).reshape(-1, 2)
+    unchecked[pairs[:, 0] * boxes + pairs[:, 1]] = 0.0
+    order = list(dict.fromkeys(int(g) for g in pairs[:, 0]))
+    return (
+        np.ascontiguousarray(np.asarray(laid_out["sphere_centers"]).T),
+        *(np.ascontiguousarray(lows[:, axis]) for axis in range(3)),
+        *(np.ascontiguousarray(highs[:, axis]) for axis in range(3)),
+        unchecked,
+        np.array(order, dtype=np.int64),
+    )
+
+
+def with_derived(arguments: tuple[Any, ...]) -> tuple[Any, ...]:
+    """``arguments`` (in ``VALIDITY_FIELDS`` order) followed by the tables derived from them: every
+    field in ``ALL_FIELDS`` order."""
+    if len(arguments) != len(VALIDITY_FIELDS):
+        raise ValueError(f"expected {len(VALIDITY_FIELDS)} kernel arrays, got {len(arguments)}")
+    return (*arguments, *_derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True))))
