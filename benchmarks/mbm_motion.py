@@ -80,8 +80,14 @@ def mbm_case(problem: MbmProblem) -> Iterator[MbmCase]:
     """The problem's models (PyBullet's scene is closed afterwards)."""
     from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
     from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres.kernels.loading import serve_jit_kernels
     from kitchen_tamp.motion.geometry.spheres.screening import EndConfirmedChecker
     from kitchen_tamp.world import PANDA, Robot, Scene, make_collision_checker, panda_urdf_path
+
+    # RRT-Connect's compiled loop loads numba anyway, and the JIT kernel answers OMPL's calls of one
+    # configuration in about 6 us where the module compiled ahead of time, which unpacks the model's
+    # arrays per call, takes 11: both planners check through the JIT kernel (the same verdicts).
+    serve_jit_kernels()
 
     described = mbm_scene(problem, panda_urdf_path(), problems_directory() / "urdf")
     space = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)

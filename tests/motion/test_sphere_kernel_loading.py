@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
 
 import numpy as np
 import pytest
 
+from kitchen_tamp import ahead_of_time_modules
 from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
 from kitchen_tamp.motion.geometry.spheres.kernels import loading
@@ -29,7 +31,7 @@ NOT_BUILT = (
 
 @pytest.fixture(scope="module")
 def module() -> ModuleType:
-    built = loading.ahead_of_time_module()
+    built = loading.AHEAD_OF_TIME.load()
     if built is None:
         pytest.skip(NOT_BUILT)
     return built
@@ -95,10 +97,17 @@ print("numba" in sys.modules)
     assert done.stdout.split()[-1] == "False"
 
 
-def test_module_name_follows_the_sources_and_the_processor(monkeypatch: pytest.MonkeyPatch) -> None:
-    sources = {path.name for path in loading.kernel_sources()}
+def test_module_name_follows_the_sources_and_the_processor(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    sources = {path.name for path in loading.AHEAD_OF_TIME.sources}
     assert {"validity.py", "clearance.py", "primitives.py", "tree_walks.py"} <= sources
-    name = loading.ahead_of_time_name()
-    assert name.startswith(loading.MODULE_PREFIX)
-    monkeypatch.setattr(loading, "processor_signature", lambda: "another processor")
-    assert loading.ahead_of_time_name() != name
+    name = loading.AHEAD_OF_TIME.name()
+    assert name.startswith(loading.AHEAD_OF_TIME.prefix)
+    first = loading.AHEAD_OF_TIME.sources[0]
+    edited = tmp_path / first.name  # the same file with one more line
+    edited.write_text(first.read_text() + "\n")
+    with_edit = replace(loading.AHEAD_OF_TIME, sources=(edited, *loading.AHEAD_OF_TIME.sources[1:]))
+    assert with_edit.name() != name
+    monkeypatch.setattr(ahead_of_time_modules, "processor_signature", lambda: "another processor")
+    assert loading.AHEAD_OF_TIME.name() != name

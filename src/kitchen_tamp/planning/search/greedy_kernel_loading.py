@@ -6,7 +6,8 @@ cache some tenths more, which is more than many whole searches take. So
 ``greedy_kernel.lazy_greedy_search`` ahead of time with numba's ``pycc`` into
 an extension module in this package's ``__pycache__`` (``greedy_ahead``),
 named after a digest of the kernels' sources so that an edited kernel is never
-served by a stale module. Loading it needs numpy only (about 0.2 s). Without
+served by a stale module (``kitchen_tamp.ahead_of_time_modules``). Loading it
+needs numpy only (about 0.2 s). Without
 it (a read-only install, an edited kernel before the next ``make install``)
 the search runs through numba's JIT kernel, the same code.
 
@@ -20,6 +21,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from kitchen_tamp.ahead_of_time_modules import AheadOfTimeModule
+
 SOLVED, UNSOLVABLE, OUT_OF_BUDGET = 0, 1, 2
 """The search's outcomes as the kernel returns them."""
 
@@ -30,43 +33,22 @@ A clock, not a count, decides here, and that keeps runs deterministic: the kerne
 steps, so the plan and the counts do not depend on when the search hands over."""
 
 _HERE = Path(__file__).resolve().parent
-KERNEL_SOURCES = (_HERE / "greedy_kernel.py", _HERE.parent / "relaxed_kernel.py")
-"""The sources compiled into the search kernel: their digest names the module compiled ahead of time."""
+AHEAD_OF_TIME = AheadOfTimeModule("greedy_search_", _HERE / "__pycache__",
+                                  (_HERE / "greedy_kernel.py", _HERE.parent / "relaxed_kernel.py"),
+                                  for_this_processor=False)
+"""The search compiled ahead of time (``greedy_ahead``) from its two sources, for any processor of this
+family (it computes with integers only, so no result depends on how it is vectorised)."""
 
 GreedyKernel = Callable[..., Any]
 
 
-def ahead_of_time_name() -> str:
-    """The module name of the search compiled ahead of time from the current sources."""
-    import hashlib  # here, not at load: 8 ms of every run's start-up
-
-    digest = hashlib.sha256()
-    for source in KERNEL_SOURCES:
-        digest.update(source.read_bytes())
-    return f"greedy_search_{digest.hexdigest()[:16]}"
-
-
-def ahead_of_time_folder() -> Path:
-    return _HERE / "__pycache__"
-
-
 def ahead_of_time_kernel() -> GreedyKernel | None:
     """``lazy_greedy_search`` from the module compiled ahead of time; None without one for these sources."""
-    import importlib.machinery
-    import importlib.util
-
-    name = ahead_of_time_name()
-    for suffix in importlib.machinery.EXTENSION_SUFFIXES:
-        path = ahead_of_time_folder() / (name + suffix)
-        if path.exists():
-            spec = importlib.util.spec_from_file_location(name, path)
-            if spec is None or spec.loader is None:
-                return None
-            module = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(module)
-            kernel: GreedyKernel = module.lazy_greedy_search
-            return kernel
-    return None
+    module = AHEAD_OF_TIME.load()
+    if module is None:
+        return None
+    kernel: GreedyKernel = module.lazy_greedy_search
+    return kernel
 
 
 def jit_kernel() -> GreedyKernel:

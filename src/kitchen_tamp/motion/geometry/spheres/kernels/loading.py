@@ -9,7 +9,8 @@ calls, the validity of a batch (`validity.valid_configurations_of_fields`) and t
 clearance (`clearance.clearance_penalties_of_arguments`), ahead of time with numba's ``pycc``
 into an extension module in this package's ``__pycache__`` (`ahead_of_time`), named after a
 digest of the kernels' sources and of the processor it was compiled for, so that an edited kernel
-is never served by a stale module, nor a module run on another processor. Loading it needs numpy only
+is never served by a stale module, nor a module run on another processor
+(``kitchen_tamp.ahead_of_time_modules``). Loading it needs numpy only
 (under a millisecond). Without it (a read-only install, a kernel edited since the last ``make
 install``) numba's JIT kernels serve, the same code.
 
@@ -23,8 +24,6 @@ This module imports neither numba nor the kernels' modules, which do.
 
 from __future__ import annotations
 
-import importlib.machinery
-import importlib.util
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,66 +33,15 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.ahead_of_time_modules import AheadOfTimeModule
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import with_derived
 
 _HERE = Path(__file__).resolve().parent
-MODULE_PREFIX = "sphere_kernels_"
-"""The module compiled ahead of time is this followed by the digest of the kernels' sources."""
-
-
-def kernel_sources() -> tuple[Path, ...]:
-    """The sources compiled into the module: every module of this package (their digest names it)."""
-    return tuple(sorted(_HERE.glob("*.py")))
-
-
-_PROCESSOR_FIELDS = ("vendor_id", "cpu family", "model", "model name", "flags", "Features", "CPU implementer",
-                     "CPU architecture", "CPU variant", "CPU part")
-"""The fields of ``/proc/cpuinfo`` that say which processor code is compiled for (x86 and ARM)."""
-
-
-def processor_signature() -> str:
-    """What the module compiled for this machine's processor depends on: its model and features as
-    Linux reports them for the first processor (else what ``platform`` says); cheap, unlike asking LLVM
-    (70 ms with llvmlite's import)."""
-    import platform
-
-    try:
-        first = Path("/proc/cpuinfo").read_text().split("\n\n")[0]
-    except OSError:
-        return f"{platform.machine()} {platform.processor()}"
-    lines = (line.split(":", 1) for line in first.splitlines() if ":" in line)
-    kept = (f"{key.strip()}:{value.strip()}" for key, value in lines if key.strip() in _PROCESSOR_FIELDS)
-    return "\n".join(kept)
-
-
-def ahead_of_time_name() -> str:
-    """The name of the module compiled ahead of time from the current sources for this processor."""
-    import hashlib  # here, not at load: every run with the spheres loads this module
-
-    digest = hashlib.sha256(processor_signature().encode())
-    for source in kernel_sources():
-        digest.update(source.name.encode())
-        digest.update(source.read_bytes())
-    return MODULE_PREFIX + digest.hexdigest()[:16]
-
-
-def ahead_of_time_folder() -> Path:
-    return _HERE / "__pycache__"
-
-
-def ahead_of_time_module() -> ModuleType | None:
-    """The module compiled ahead of time from the current sources, or None without one."""
-    name = ahead_of_time_name()
-    for suffix in importlib.machinery.EXTENSION_SUFFIXES:
-        path = ahead_of_time_folder() / (name + suffix)
-        if path.exists():
-            spec = importlib.util.spec_from_file_location(name, path)
-            if spec is None or spec.loader is None:
-                return None
-            module = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(module)
-            return module
-    return None
+AHEAD_OF_TIME = AheadOfTimeModule("sphere_kernels_", _HERE / "__pycache__", tuple(sorted(_HERE.glob("*.py"))),
+                                  for_this_processor=True)
+"""The kernels compiled ahead of time (`ahead_of_time`), every module of this package in the digest; for this
+processor, since trajectory optimisation needs the clearance to equal the JIT kernel's to the bit (with
+``pycc``'s generic processor it differed by up to 4.5e-12 on the kitchen)."""
 
 
 PackedValidity = Any
@@ -115,7 +63,7 @@ class SphereKernels:
 
 
 def ahead_of_time_kernels(module: ModuleType) -> SphereKernels:
-    """The kernels of the module compiled ahead of time (`ahead_of_time_module`)."""
+    """The kernels of the module compiled ahead of time (``AHEAD_OF_TIME.load()``)."""
     fields_kernel = module.valid_configurations_of_fields
 
     def valid(qs: npt.NDArray[np.float64], packed: PackedValidity, margin: float,
@@ -144,7 +92,7 @@ def sphere_kernels() -> SphereKernels:
     """The kernels serving this process: the module compiled ahead of time when there is one for these
     sources, else the JIT kernels; chosen on the first call."""
     if not _serving:
-        module = ahead_of_time_module()
+        module = AHEAD_OF_TIME.load()
         _serving.append(jit_kernels() if module is None else ahead_of_time_kernels(module))
     return _serving[0]
 
