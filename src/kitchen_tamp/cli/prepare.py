@@ -67,8 +67,10 @@ def _compile_sphere_kernels_ahead_of_time(
     """The validity and clearance kernels into the module a run loads without numba
     (`kernels.loading`), with the signatures of their JIT runs on the default kitchen (the
     clearance's ran above)."""
-    from kitchen_tamp.motion.geometry.spheres.kernels.ahead_of_time import compile_ahead_of_time
-    from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations_of_fields
+    from kitchen_tamp.motion.geometry.spheres.kernels.ahead_of_time import (
+        compile_ahead_of_time,
+        valid_configurations_of_fields,
+    )
     from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import with_derived
 
     valid_configurations_of_fields(with_derived(checker.kernel_arguments), home, checker.margin, False)
@@ -120,6 +122,7 @@ def main() -> int:
     clock = time.perf_counter()
     # numba decides where its cache goes when the kernels are imported: before the cache moves
     import kitchen_tamp.motion.geometry.spheres
+    import kitchen_tamp.motion.geometry.spheres.kernels.ahead_of_time
     import kitchen_tamp.motion.geometry.spheres.kernels.clearance
     import kitchen_tamp.motion.geometry.spheres.kernels.segments
     import kitchen_tamp.motion.sampling.rrt_connect_kernel

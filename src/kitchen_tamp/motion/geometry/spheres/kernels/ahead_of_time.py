@@ -1,7 +1,7 @@
 """Compile the validity and clearance kernels ahead of time (numba's ``pycc``), at install.
 
 `compile_ahead_of_time` takes the signatures numba's JIT gave
-`validity.valid_configurations_of_fields` and `clearance.clearance_penalties_of_arguments` for a
+`valid_configurations_of_fields` (below) and `clearance.clearance_penalties_of_arguments` for a
 real model's arrays (so both must have run once in this process, as ``kitchen_tamp.cli.prepare``
 makes them) and writes the extension module that ``loading.AHEAD_OF_TIME`` loads. Only
 ``kitchen_tamp.cli.prepare`` calls this.
@@ -12,7 +12,7 @@ without. Two things make them so (``tests/motion/test_sphere_kernel_loading.py``
 
 - ``pycc`` compiles an exported function from its Python source with its own flags, not the ones
   its ``numba.njit`` gave it (``fastmath``), while the functions it calls keep theirs; so what is
-  exported are wrappers without a body of their own (`validity.valid_configurations_of_fields`,
+  exported are wrappers without a body of their own (`valid_configurations_of_fields` here,
   `clearance.clearance_penalties_of_arguments`);
 - ``pycc`` targets a generic processor by default, where the JIT compiles for this one, and the
   clearance's values then differed in their last bits (4.5e-12 on the kitchen): the module is
@@ -26,9 +26,31 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numba
+import numpy as np
+import numpy.typing as npt
+
 from kitchen_tamp.motion.geometry.spheres.kernels.clearance import clearance_penalties_of_arguments
 from kitchen_tamp.motion.geometry.spheres.kernels.loading import AHEAD_OF_TIME
-from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_configurations_of_fields
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays, validity_scratch
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@numba.njit(cache=True)
+def valid_configurations_of_fields(
+    fields: tuple[Any, ...],
+    qs: FloatArray,
+    margin: float,
+    stop_at_invalid: bool,
+) -> npt.NDArray[np.bool_]:
+    """`validity.valid_configurations` with the arrays as the plain tuple `validity_fields.with_derived`
+    gives (packed here, in compiled code): what the module exports, since an extension module cannot
+    take a structref from Python."""
+    arrays = ValidityArrays(*fields)  # type: ignore[no-untyped-call]
+    return valid_rows(qs, arrays, margin, stop_at_invalid, validity_scratch(arrays, qs.shape[1]))
+
 
 EXPORTED: dict[str, Any] = {
     "valid_configurations_of_fields": valid_configurations_of_fields,

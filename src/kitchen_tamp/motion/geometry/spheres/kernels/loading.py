@@ -5,7 +5,7 @@ Importing numba and readying its compiler cost a run about 0.7 s of one core bef
 check (the import 0.3 s, numba's typing and target registries 0.35-0.4 s on the first call,
 reading the cached kernels the rest), more than a kitchen run's motion planning. So ``make
 install`` (``python -m kitchen_tamp.cli.prepare``) also compiles the two kernels a kitchen run
-calls, the validity of a batch (`validity.valid_configurations_of_fields`) and the smooth
+calls, the validity of a batch (`ahead_of_time.valid_configurations_of_fields`) and the smooth
 clearance (`clearance.clearance_penalties_of_arguments`), ahead of time with numba's ``pycc``
 into an extension module in this package's ``__pycache__`` (`ahead_of_time`), named after a
 digest of the kernels' sources and of the processor it was compiled for, so that an edited kernel

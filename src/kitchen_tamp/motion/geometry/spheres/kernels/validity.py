@@ -31,8 +31,6 @@ other's bound (one pass each), then sphere against sphere, then the fine level.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numba
 import numpy as np
 import numpy.typing as npt
@@ -115,20 +113,6 @@ def valid_configurations(
 ) -> npt.NDArray[np.bool_]:
     """`valid_rows` with buffers of its own (a caller checking many batches keeps one
     `validity_scratch` and calls `valid_rows`)."""
-    return valid_rows(qs, arrays, margin, stop_at_invalid, validity_scratch(arrays, qs.shape[1]))
-
-
-@numba.njit(cache=True)
-def valid_configurations_of_fields(
-    fields: tuple[Any, ...],
-    qs: FloatArray,
-    margin: float,
-    stop_at_invalid: bool,
-) -> npt.NDArray[np.bool_]:
-    """`valid_configurations` with the arrays as the plain tuple `validity_fields.with_derived` gives
-    (packed here, in compiled code): what the module compiled ahead of time exports
-    (`kernels.loading`), since an extension module cannot take a structref from Python."""
-    arrays = ValidityArrays(*fields)  # type: ignore[no-untyped-call]
     return valid_rows(qs, arrays, margin, stop_at_invalid, validity_scratch(arrays, qs.shape[1]))
 
 
