@@ -175,9 +175,7 @@ class SphereCollisionChecker:
             rows = np.flatnonzero(valid)
             if len(rows) == 0:
                 break
-            valid[rows] = self._kernels.valid(
-                np.ascontiguousarray(batch[rows]), arguments, self.margin - offset, False
-            )
+            valid[rows] = self._kernels.valid(batch[rows], arguments, self.margin - offset, False)
         return valid
 
     def _unpadded_passes(self) -> list[tuple[float, PackedValidity]]:
