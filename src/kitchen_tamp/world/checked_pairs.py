@@ -263,10 +263,9 @@ class CheckedPairs:
         pairs stops after a few)."""
         table = np.concatenate([self.bounds(self.moving_rows), static_bounds])
         gaps = (table.take(self._gap_minuends) - table.take(self._gap_subtrahends)).reshape(6, -1).max(axis=0)
-        order = np.argsort(gaps, kind="stable")
-        ordered = gaps[order]
-        near = int(np.searchsorted(ordered, horizon + BOUNDS_SLACK, side="right"))
-        return zip(order[:near].tolist(), ordered[:near].tolist(), strict=True)
+        near = np.flatnonzero(gaps <= horizon + BOUNDS_SLACK)
+        near = near[np.argsort(gaps[near], kind="stable")]
+        return zip(near.tolist(), gaps[near].tolist(), strict=True)
 
 
 
