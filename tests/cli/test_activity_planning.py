@@ -189,6 +189,25 @@ def test_the_planner_cli_imports_no_numpy_pybullet_or_drake(tmp_path: Path) -> N
     assert "heavy modules: []" in result.stdout
 
 
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="threads are counted in /proc/self/status")
+@pytest.mark.parametrize("preset", [None, "2"])
+def test_the_planner_keeps_numpy_to_one_blas_thread_unless_told(preset: str | None) -> None:
+    # numpy, once the planner has run (its compiled search imports it), starts no spinning BLAS
+    # threads: the process has one thread; a user's own OPENBLAS_NUM_THREADS is kept.
+    probe = (
+        "from kitchen_tamp.cli.activity_planning import main\n"
+        "main(['problem_hard.pddl', '--planner', 'gbfs'])\n"
+        "import numpy\n"
+        "threads = [l for l in open('/proc/self/status') if l.startswith('Threads:')][0].split()[1]\n"
+        "print('threads', threads)\n")
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    if preset is not None:
+        env["OPENBLAS_NUM_THREADS"] = preset
+    result = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True, text=True, env=env)
+    assert result.returncode == 0, result.stderr
+    assert f"threads {1 if preset is None else min(int(preset), os.cpu_count() or 1)}" in result.stdout
+
+
 @pytest.mark.parametrize("where", ["under a file", "a folder"])
 def test_an_unwritable_plan_out_is_refused_before_planning(
         capsys: pytest.CaptureFixture[str], tmp_path: Path, where: str) -> None:

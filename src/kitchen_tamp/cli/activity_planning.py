@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from collections.abc import Sequence
@@ -153,8 +154,16 @@ def run(args: argparse.Namespace) -> int:
     return int(ExitCode.NO_PLAN if failed else ExitCode.SOLVED)
 
 
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "1")
+"""The planner's numpy does no linear algebra, but numpy's OpenBLAS starts a thread per core when
+numpy is imported (a search that hands over to the compiled kernel imports it), and those threads
+spin waiting for work: 0.09-0.14 s of CPU on a run that hands over, nothing of its wall time
+(docs/planner.md). So the planner's process keeps one, unless the user set the variable."""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """The planner's command line; a mistake in it exits 2 with one line (``SystemExit``)."""
+    os.environ.setdefault(*BLAS_THREADS)  # before anything imports numpy
     args = build_parser().parse_args(argv)
     return exit_code_of(
         lambda: run(args),
