@@ -129,8 +129,15 @@ def test_pictures_started_before_the_timeline_is_known_draw_it_once_handed_over(
     gif_job = PictureJob(task, kitchen_map, None, tmp_path / "gif", "joints", joints=False)
     (tmp_path / "gif").mkdir()
     pending = PendingPictures(gif_job)
+    time.sleep(0.5)  # the camera, the stand-ins and the background are made meanwhile
     pending.draw(timeline)
-    assert pending.result().frames == len(frame_times(timeline))
+    drawn = pending.result()
+    assert drawn.frames == len(frame_times(timeline))
+    (tmp_path / "at-once").mkdir()
+    at_once = PendingPictures(PictureJob(task, kitchen_map, timeline, tmp_path / "at-once", "joints",
+                                         joints=False)).result()
+    assert drawn.gif is not None and at_once.gif is not None
+    assert drawn.gif.read_bytes() == at_once.gif.read_bytes()
 
 
 @pytest.mark.slow

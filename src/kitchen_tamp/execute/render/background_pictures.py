@@ -6,9 +6,10 @@ the parent waits for physics and writes replay.html and joints.png: that splits
 the work about evenly. Without a GIF, the child draws joints.png.
 The child inherits what it needs (the task, the kitchen map and, if known, the
 timeline) by the fork and sends back what it wrote, or the traceback of what went
-wrong. A job without a timeline starts the child at once: it builds its kitchen (when
-it draws the GIF) while the judge reads the plan, then waits for the timeline
-(`PendingPictures.draw`).
+wrong. A job without a timeline starts the child at once: it builds its kitchen and
+what the GIF's frames need before the timeline (`ReplayRenderer`: the camera, the
+robot's stand-ins, the still background) while the judge reads the plan, then waits
+for the timeline (`PendingPictures.draw`).
 Where processes cannot be forked, the pictures are drawn in this process when
 their result is asked for.
 """
@@ -25,7 +26,7 @@ from multiprocessing.connection import Connection
 from pathlib import Path
 
 from kitchen_tamp.execute.render.joint_plot import load_plotting, plot_joints
-from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, render_replay, write_gif
+from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, ReplayRenderer, write_gif
 from kitchen_tamp.execute.timeline import Timeline
 from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
 from kitchen_tamp.planning import Task
@@ -94,10 +95,11 @@ class PictureJob:
         if not self.gif:
             return Pictures(*self.draw_joints(timeline()))
         with build_kitchen_for_task(self.task, kitchen_map=self.kitchen_map) as kitchen:
+            renderer = ReplayRenderer(kitchen)
             drawn = timeline()
             joints, joints_s = self.draw_joints(drawn) if self.joints else (None, 0.0)
             clock = time.perf_counter()
-            images = render_replay(kitchen, drawn)
+            images = renderer.images(drawn)
         gif = write_gif(self.out_dir / GIF_FILE, images, FRAME_SECONDS) if images else None
         return Pictures(joints, joints_s, gif, len(images), time.perf_counter() - clock)
 

@@ -121,6 +121,34 @@ class LayeredFrames:
         self.visibility.show_only(self.visibility.links)
 
 
+class ReplayRenderer:
+    """What drawing a replay needs before its timeline is known, made from ``kitchen`` (built fresh
+    for the problem): the camera, the robot's stand-ins and the still background. A child drawing
+    the GIF makes it while the judge is still reading the plan (`background_pictures`)."""
+
+    def __init__(self, kitchen: KitchenScene, width: int = 400, height: int = 300) -> None:
+        self.kitchen = kitchen
+        self.view = overview_camera(kitchen, width, height)
+        self.stand_ins = low_poly_robot(kitchen)
+        self.layers = LayeredFrames(kitchen, self.stand_ins, self.view)
+
+    def images(self, timeline: Timeline, on_frame: Callable[[int, int], None] | None = None) -> list[Image]:
+        """Pictures of the kitchen along ``timeline`` (once: the kitchen is left at its end); one
+        picture of the scene as it is for a timeline without motion (a plan of no actions)."""
+        if not timeline.segments:
+            self.layers.close()
+            return [render(self.kitchen.scene, self.view)]
+        times = frame_times(timeline)
+        images = []
+        for number, _ in enumerate(timeline.play(self.kitchen, times)):
+            self.stand_ins.follow()
+            images.append(self.layers.frame())
+            if on_frame is not None:
+                on_frame(number + 1, len(times))
+        self.layers.close()
+        return images
+
+
 def render_replay(
     kitchen: KitchenScene,
     timeline: Timeline,
@@ -128,22 +156,8 @@ def render_replay(
     height: int = 300,
     on_frame: Callable[[int, int], None] | None = None,
 ) -> list[Image]:
-    """Pictures of ``kitchen`` (built fresh for the problem) along ``timeline``; one picture of
-    the scene as it is for a timeline without motion (a plan of no actions)."""
-    view = overview_camera(kitchen, width, height)
-    stand_ins = low_poly_robot(kitchen)
-    if not timeline.segments:
-        return [render(kitchen.scene, view)]
-    times = frame_times(timeline)
-    layers = LayeredFrames(kitchen, stand_ins, view)
-    images = []
-    for number, _ in enumerate(timeline.play(kitchen, times)):
-        stand_ins.follow()
-        images.append(layers.frame())
-        if on_frame is not None:
-            on_frame(number + 1, len(times))
-    layers.close()
-    return images
+    """Pictures of ``kitchen`` (built fresh for the problem) along ``timeline`` (`ReplayRenderer`)."""
+    return ReplayRenderer(kitchen, width, height).images(timeline, on_frame)
 
 
 def shared_palette(images: list[Image]) -> PilImage.Image:
