@@ -32,7 +32,7 @@ from kitchen_tamp.planning.relaxed_kernel import (
     UNREACHED,
     ByteArray,
     IntArray,
-    _action_applicable,
+    _all_hold,
     _holds,
     _none_holds,
     _pop,
@@ -131,7 +131,8 @@ def _applicable(state: ByteArray, unconditional: IntArray, key_start: IntArray, 
             continue
         for position in range(key_start[atom], key_start[atom + 1]):
             action = key_actions[position]
-            if _action_applicable(state, action, pres, pre_start, negs, neg_start):
+            if _all_hold(state, pres, pre_start[action], pre_start[action + 1]) and _none_holds(
+                    state, negs, neg_start[action], neg_start[action + 1]):  # as in applicable_achievers
                 out[count] = action
                 count += 1
     return count
