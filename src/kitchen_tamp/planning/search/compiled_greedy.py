@@ -51,7 +51,8 @@ def _exploration_arrays(compiled: CompiledExploration) -> tuple[object, ...]:
     return (compiled.n_atoms, compiled.users_start, compiled.users, compiled.adds_start, compiled.adds,
             compiled.precondition_counts, compiled.free_actions, compiled.goal_ids, compiled.cost,
             compiled.supporter, compiled.unsettled, compiled.settled_sum, compiled.heap,
-            compiled.offered_atoms, compiled.pre_start, compiled.pres, compiled.plan, compiled.helpful,
+            compiled.offered_atoms, compiled.level_first, compiled.level_last, compiled.next_offer,
+            compiled.pre_start, compiled.pres, compiled.plan, compiled.helpful,
             compiled.chosen, compiled.marked, compiled.marked_atoms, compiled.stack)
 
 

@@ -162,11 +162,11 @@ def _evaluate(state, accepted, stamp, preferred_stamp, exploration, landmarks): 
     """``LandmarkEvaluator._evaluate_compiled``: (h_FF, h_LM), (-1, -1) at a dead end; the preferred
     operators get ``preferred_stamp[action] = stamp``."""
     (n_atoms, users_start, users, adds_start, adds, precondition_counts, free_actions, goal_ids, cost,
-     supporter, unsettled, settled_sum, heap, offered_atoms, pre_start, pres, plan, helpful, chosen,
-     marked, marked_atoms, stack) = exploration
+     supporter, unsettled, settled_sum, heap, offered_atoms, level_first, level_last, next_offer, pre_start,
+     pres, plan, helpful, chosen, marked, marked_atoms, stack) = exploration
     if not additive_exploration(state, n_atoms, users_start, users, adds_start, adds, precondition_counts,
                                 free_actions, goal_ids, cost, supporter, unsettled, settled_sum, heap,
-                                offered_atoms):
+                                offered_atoms, level_first, level_last, next_offer):
         return -1, -1
     length, applicable = supported_plan(state, goal_ids, cost, supporter, pre_start, pres, plan, helpful,
                                         chosen, marked, marked_atoms, stack)
