@@ -120,6 +120,8 @@ def additive_exploration(state_bytes: ByteArray, n_atoms: int, users_start: IntA
     unsettled[:] = precondition_counts
     settled_sum[:] = 0
     levels = len(level_first)
+    # Appending to a bucket is written out at its three places: as a function of the arrays, numba
+    # counts references to them on each call (see the module's callers of ``_all_hold``).
     top = -1  # the highest cost whose bucket is set up (empty or not)
     size = 0
     sequence = 0
