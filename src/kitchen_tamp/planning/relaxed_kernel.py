@@ -67,8 +67,6 @@ def _none_holds(state_bytes: ByteArray, atoms: IntArray, start: int, end: int) -
     return True
 
 
-
-
 @numba.njit(cache=True)
 def _push(heap: IntArray, size: int, key: int) -> int:
     """Push ``key`` onto the min-heap of ``size`` keys; the new size."""
