@@ -96,10 +96,11 @@ def test_the_kernel_stops_at_the_expansion_budget(kernel: str, monkeypatch: pyte
     assert (compiled.generated, compiled.evaluated) == (python.generated, python.evaluated)
 
 
-def _numba_imported_by_gbfs(domain: str, problem: str) -> bool:
+def _numba_imported_by_gbfs(domain: str, problem: str, before_search: str = "") -> bool:
     code = ("import sys\n"
             "from kitchen_tamp.planning import load_task, plan\n"
             f"task = load_task({str(IPC / domain / problem)!r}, {str(IPC / domain / 'domain.pddl')!r})\n"
+            f"{before_search}"
             "assert plan(task, 'gbfs').solved\n"
             "print('numba' in sys.modules)\n")
     output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -114,6 +115,19 @@ def test_with_the_kernel_compiled_ahead_of_time_a_large_search_does_not_import_n
     if loading.ahead_of_time_kernel() is None:
         pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
     assert not _numba_imported_by_gbfs("sokoban", "task23.pddl")
+
+
+def test_a_search_hands_over_before_its_evaluation_would_import_numba() -> None:
+    if loading.ahead_of_time_kernel() is None:
+        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+    # the evaluator's work would take it to the compiled exploration at its fourth state, the clock never
+    before = ("import kitchen_tamp.planning.landmark_count as counting\n"
+              "from kitchen_tamp.planning.heuristics import RelaxedExploration\n"
+              "from kitchen_tamp.planning.search import greedy_kernel_loading as loading\n"
+              "work = counting.LandmarkEvaluator(RelaxedExploration(task, 'hadd')).work_per_evaluation\n"
+              "counting.COMPILED_AFTER_WORK = 3 * work\n"
+              "loading.HANDOVER_AFTER_SECONDS = 1e9\n")
+    assert not _numba_imported_by_gbfs("sokoban", "task23.pddl", before)
 
 
 def test_the_hand_over_by_cpu_time_gives_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -135,12 +135,17 @@ class LandmarkEvaluator:
         accepted = 0 if self.count is None else self.count.accepted_after(parent_accepted, state)
         return self.evaluate(state, accepted)
 
+    def compiles_next(self) -> bool:
+        """Whether the next evaluation goes over to the compiled exploration (importing numba)."""
+        return self.compiled is None and (self.evaluations + 1) * self.work_per_evaluation > self.compiled_after_work
+
     def evaluate(self, state: State, accepted: int) -> Evaluation:
         exploration = self.exploration
         if exploration.unsolvable:
             return DEAD_END
+        compiles = self.compiles_next()
         self.evaluations += 1
-        if self.compiled is None and self.evaluations * self.work_per_evaluation > self.compiled_after_work:
+        if compiles:
             from kitchen_tamp.planning.compiled_exploration import (  # numba: large tasks only
                 CompiledExploration,
                 CompiledLandmarkCount,

@@ -257,7 +257,10 @@ class _Handover:
         self.ahead_of_time_looked_for = False
 
     def due(self) -> bool:
-        return self.evaluator.compiled is not None or time.process_time() > self.due_at
+        # Before the evaluator would import numba for its compiled exploration, the kernel compiled
+        # ahead of time (which needs numpy only) is looked for: a large task reaches that point first.
+        return (self.evaluator.compiled is not None or self.evaluator.compiles_next()
+                or time.process_time() > self.due_at)
 
     def search(self) -> SearchResult | None:
         """The compiled search's result, or None: no kernel yet (go on in Python)."""
