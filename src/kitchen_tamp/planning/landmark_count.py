@@ -137,7 +137,8 @@ class LandmarkEvaluator:
 
     def compiles_next(self) -> bool:
         """Whether the next evaluation goes over to the compiled exploration (importing numba)."""
-        return self.compiled is None and (self.evaluations + 1) * self.work_per_evaluation > self.compiled_after_work
+        next_work = (self.evaluations + 1) * self.work_per_evaluation
+        return self.compiled is None and next_work > self.compiled_after_work
 
     def evaluate(self, state: State, accepted: int) -> Evaluation:
         exploration = self.exploration
