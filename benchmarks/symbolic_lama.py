@@ -7,7 +7,8 @@
 
 Each row runs ``pddl/activity_planning.py PROBLEM --domain DOMAIN --planner gbfs`` on new files (the task
 cache emptied first) and ``fast-downward.py --alias lama-first DOMAIN PROBLEM`` as fresh processes,
-alternating, and takes the median over ``--rounds`` (default 1) of each one's CPU time (user + system of the
+alternating run by run (which goes first changes every round), and takes the median over ``--rounds``
+(default 1) of each one's CPU time (user + system of the
 process and its children, steadier than wall time on a shared machine). It prints the markdown table of
 docs/planner.md's "Against lama-first on the IPC set" and the verdict against the bar: no row more than 2x
 slower than lama-first, geometric mean at most 0.5x, every problem solved. ``benchmarks/symbolic.py
@@ -60,20 +61,28 @@ MEAN_RATIO = 0.5
 """The bar: ours / lama-first at most this in geometric mean."""
 
 
-def _measure(command: list[str], planner: str, workdir: Path, timeout: float,
-             rounds: int) -> tuple[float | None, int | None, int | None]:
-    """Median CPU seconds over ``rounds`` runs, plan length, expansions (None, None, None without a plan)."""
-    cpu: list[float] = []
-    length = expanded = None
-    for _ in range(rounds):
-        _, cpu_seconds, outcome = _run_once(command, planner, workdir, timeout + 5)
-        if cpu_seconds is None:
-            return None, None, None
-        cpu.append(cpu_seconds)
-        length, expanded = outcome.length, outcome.expanded
-        if cpu_seconds > 5.0:
-            break  # a slow row: one run is measurement enough
-    return statistics.median(cpu), length, expanded
+def _measure_pair(commands: dict[str, list[str]], workdir: Path, timeout: float,
+                  rounds: int) -> dict[str, tuple[float | None, int | None, int | None]]:
+    """Per planner of ``commands`` (ours, lama-first): the median CPU seconds over ``rounds`` runs, plan
+    length and expansions (None, None, None without a plan). The two take turns run by run, and which
+    goes first changes every round: the first of two runs in a row is often the slower."""
+    cpu: dict[str, list[float]] = {planner: [] for planner in commands}
+    outcomes: dict[str, tuple[int | None, int | None]] = {}
+    failed: set[str] = set()
+    planners = list(commands)
+    for round_number in range(rounds):
+        for planner in planners if round_number % 2 == 0 else planners[::-1]:
+            slow = bool(cpu[planner]) and cpu[planner][-1] > 5.0  # a slow row: one run is measurement enough
+            if planner in failed or slow:
+                continue
+            _, cpu_seconds, outcome = _run_once(commands[planner], planner, workdir, timeout + 5)
+            if cpu_seconds is None:
+                failed.add(planner)
+                continue
+            cpu[planner].append(cpu_seconds)
+            outcomes[planner] = (outcome.length, outcome.expanded)
+    return {planner: (None, None, None) if planner in failed
+            else (statistics.median(cpu[planner]), *outcomes[planner]) for planner in commands}
 
 
 def _rows(only: set[str] | None) -> list[tuple[str, Path, Path]]:
@@ -169,9 +178,9 @@ def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: 
     with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
         workdir = Path(folder)
         for row, domain, problem in _rows(only):
-            runs = {planner: _measure(_command(planner, "gbfs", domain, problem, workdir, fd_script,
-                                               timeout), planner, workdir, timeout, rounds)
-                    for planner in ("first", "fd")}
+            commands = {planner: _command(planner, "gbfs", domain, problem, workdir, fd_script, timeout)
+                        for planner in ("first", "fd")}
+            runs = _measure_pair(commands, workdir, timeout, rounds)
             (ours, our_length, our_expanded), (fd, fd_length, fd_expanded) = runs["first"], runs["fd"]
             ratio = "-" if ours is None or fd is None else f"{ours / fd:.2f}"
             if ours is None:
