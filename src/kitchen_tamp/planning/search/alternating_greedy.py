@@ -247,9 +247,11 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
 class _Handover:
     """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
 
-    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, the kernel compiled ahead of
-    time is looked for; without it, the search goes over to numba's JIT kernel when the evaluator has
-    switched to the JIT exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
+    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, or sooner when its evaluator's
+    next state would take it to the JIT exploration (``LandmarkEvaluator.compiles_next``), the kernel
+    compiled ahead of time is looked for; without it, the search goes over to numba's JIT kernel when the
+    evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``), which has imported numba
+    already."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
@@ -257,8 +259,6 @@ class _Handover:
         self.ahead_of_time_looked_for = False
 
     def due(self) -> bool:
-        # Before the evaluator would import numba for its compiled exploration, the kernel compiled
-        # ahead of time (which needs numpy only) is looked for: a large task reaches that point first.
         return (self.evaluator.compiled is not None or self.evaluator.compiles_next()
                 or time.process_time() > self.due_at)
 
