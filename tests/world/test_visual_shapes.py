@@ -1,11 +1,13 @@
 """What bodies look like comes from their URDFs, and link frames read in one call agree with
-``link_pose``."""
+``link_pose``; a scene loaded without its visuals collides alike and cannot be looked at."""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
-from kitchen_tamp.world import Pose, Robot, Scene, VisualKind, visual_shapes
+from kitchen_tamp.execute.render.scene_recording import SceneRecorder
+from kitchen_tamp.world import CameraView, Pose, Robot, Scene, VisualKind, render, visual_shapes
 
 
 def test_visuals_are_the_urdfs_primitives_meshes_and_colours(panda_scene: tuple[Scene, Robot]) -> None:
@@ -34,3 +36,26 @@ def test_link_frames_agree_with_link_pose(panda_scene: tuple[Scene, Robot]) -> N
         for link, position, quaternion in zip(body.link_names, positions, quaternions, strict=True):
             error = body.link_pose(link).distance_to(Pose.from_parts(position, quaternion))
             assert error[0] < 1e-6 and error[1] < 1e-5, (body.name, link)
+
+
+def test_a_scene_without_visuals_collides_alike_and_refuses_to_be_looked_at(
+    panda_scene: tuple[Scene, Robot],
+) -> None:
+    scene, robot = panda_scene
+    with Scene(visuals=False) as bare:
+        for body in scene.bodies:
+            copy = bare.load_urdf(body.name, scene.urdf_paths[body.name], body.base_pose(), fixed_base=True)
+            meshes = [v.mesh_path for v in visual_shapes(copy) if v.mesh_path is not None]
+            assert not any("/visual/" in m for m in meshes)  # PyBullet shows the collision shapes
+            movable = [j.name for j in body.joints if j.movable]
+            if movable:
+                copy.reset_joint_positions(movable, body.joint_positions(movable))
+            for link in body.link_names:  # the same collision shapes, where they are
+                assert np.array_equal(copy.aabb(link), body.aabb(link)), (body.name, link)
+        assert visual_shapes(robot.body)  # the scene with visuals still has them
+        with pytest.raises(ValueError, match="loaded without them"):
+            render(bare, CameraView((0.0, 0.0, 1.0), 2.0, 0.0, -30.0))
+        with pytest.raises(ValueError, match="loaded without them"):
+            SceneRecorder(bare)
+    with pytest.raises(ValueError, match="GUI"):
+        Scene(gui=True, visuals=False)

@@ -147,7 +147,7 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     planner = symbolic_planner(task)
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, planner, scene=scene)
     report.inputs, report.started = inputs.data(), started
-    with build_kitchen_for_task(task, kitchen_map=kitchen_map) as kitchen:
+    with build_kitchen_for_task(task, kitchen_map=kitchen_map, visuals=args.meshcat) as kitchen:
         live = start_live_viewer(kitchen) if args.meshcat else None
         progress = _Progress()
 

@@ -115,7 +115,9 @@ def _judge_kinematically(
     viewing, trajectory = context.viewing, context.run.trajectory
     wait = wait_for_enter if viewing.step and not viewing.gui else None
     on_judged = None if physics is None else physics.judged
-    with build_kitchen_for_task(context.task, gui=viewing.gui, kitchen_map=context.kitchen_map) as fresh:
+    looked_at = viewing.gui or viewing.meshcat
+    with build_kitchen_for_task(context.task, gui=viewing.gui, kitchen_map=context.kitchen_map,
+                                visuals=looked_at) as fresh:
         check_joint_count(context.run, fresh.robot.dof, context.trajectory_file)
         if viewing.meshcat and context.live is None:
             context.live = start_live_viewer(fresh)

@@ -118,6 +118,7 @@ def render_with_depth(
     """An RGB picture (height, width, 3) of the scene seen from ``view`` and its depth buffer
     (height, width; nearer is smaller, 1 where nothing was drawn); with ``window``, only those
     pixels of it, drawn as the whole picture would draw them."""
+    scene.require_visuals("rendering a picture")
     view_matrix, projection = _camera_matrices(scene, view)
     width, height = view.width, view.height
     if window is not None:

@@ -35,20 +35,35 @@ class Scene:
     With ``polyhedral_contacts``, every URDF is loaded with the faces PyBullet's
     polyhedral (separating-axis) contacts need; a ``PhysicsWorld`` whose settings ask for
     them then uses them. Planning and the kinematic judge never ask for them.
+
+    Without ``visuals``, URDFs are loaded without their visual shapes (the Panda's visual meshes
+    are three quarters of its loading time): a scene nobody looks at. Pictures, recordings and
+    viewers need them, and refuse such a scene (`require_visuals`).
     """
 
-    def __init__(self, gui: bool = False, polyhedral_contacts: bool = False) -> None:
+    def __init__(self, gui: bool = False, polyhedral_contacts: bool = False, visuals: bool = True) -> None:
+        if gui and not visuals:
+            raise ValueError("a GUI scene shows its visual shapes: it cannot be loaded without them")
         self.client: int = p.connect(p.GUI if gui else p.DIRECT)
         if self.client < 0:
             raise SceneClosedError("could not connect to a PyBullet physics server")
         self.polyhedral_contacts = polyhedral_contacts
+        self.visuals = visuals
         self._urdf_flags = p.URDF_USE_INERTIA_FROM_FILE
         if polyhedral_contacts:
             self._urdf_flags |= p.URDF_INITIALIZE_SAT_FEATURES
+        if not visuals:
+            self._urdf_flags |= p.URDF_IGNORE_VISUAL_SHAPES
         self._bodies: dict[str, Body] = {}
         self._urdf_paths: dict[str, Path] = {}
         self._attachments: dict[str, Attachment] = {}
         self._connected = True
+
+    def require_visuals(self, purpose: str) -> None:
+        """Raises ValueError when the scene was loaded without its visual shapes (``purpose``: what
+        needed them)."""
+        if not self.visuals:
+            raise ValueError(f"{purpose} needs visual shapes, and this scene was loaded without them")
 
     # -- lifetime ---------------------------------------------------------------------------
     def close(self) -> None:

@@ -68,7 +68,8 @@ def execute_under_physics(
     judged_in_order = judged_steps(judged) if isinstance(judged, Verification) else judged
     settings = configuration.settings
     with build_kitchen_for_task(
-        task, kitchen_map=kitchen_map, polyhedral_contacts=settings.polyhedral_contacts
+        task, kitchen_map=kitchen_map, polyhedral_contacts=settings.polyhedral_contacts,
+        visuals=on_frame is not None,  # only a recorded rollout is looked at
     ) as kitchen:
         world = PhysicsWorld(
             kitchen.scene, kitchen.robot, [kitchen.kitchen], list(kitchen.boxes.values()),

@@ -39,7 +39,7 @@ def observed_kitchen(task: Task, simulated: KitchenScene, arm: ArmState) -> Kitc
     Loose boxes are lifted by the kitchen's resting gap, as the layout puts them, and a
     box inside a drawer rides with it again.
     """
-    observed = build_kitchen_for_task(task, kitchen_map=simulated.map)
+    observed = build_kitchen_for_task(task, kitchen_map=simulated.map, visuals=False)
     try:
         for body in observed.boxes.values():
             observed.scene.detach(body)

@@ -66,6 +66,7 @@ class SceneRecorder:
     """Captures the world pose of every link of ``scene`` that has a visual, frame by frame."""
 
     def __init__(self, scene: Scene) -> None:
+        scene.require_visuals("recording a scene for a viewer")
         self.scene = scene
         links: list[RecordedLink] = []
         self._sources: list[tuple[Body, tuple[str, ...]]] = []

@@ -111,9 +111,11 @@ def build_kitchen(
     gui: bool = False,
     kitchen_map: KitchenMap | None = None,
     polyhedral_contacts: bool = False,
+    visuals: bool = True,
 ) -> KitchenScene:
     """The kitchen laid out from ``:init``; Ψ(scene) is checked to equal ``init_atoms``.
-    ``polyhedral_contacts``: for a ``PhysicsWorld`` (``Scene``).
+    ``polyhedral_contacts``: for a ``PhysicsWorld``; ``visuals=False``: a kitchen nobody looks at
+    (`Scene`).
 
     Raises ``UnknownObjectError`` for objects the kitchen lacks,
     ``UnsupportedInitialStateError`` for starts it cannot lay out and
@@ -125,7 +127,7 @@ def build_kitchen(
     boxes = sorted(n for n in objects if kitchen_map.type_of(n) == "box")
     supports = start_supports(init, boxes, kitchen_map)
     opened_predicates = kitchen_map.binding.predicates_for("opened")
-    scene = Scene(gui=gui, polyhedral_contacts=polyhedral_contacts)
+    scene = Scene(gui=gui, polyhedral_contacts=polyhedral_contacts, visuals=visuals)
     try:
         kitchen_body = scene.load_urdf(KITCHEN_BODY, kitchen_map.kitchen_urdf, fixed_base=True)
         mount = support_region(kitchen_body, ROBOT_MOUNT_LINK, ROBOT_MOUNT_LINK)
@@ -154,11 +156,15 @@ def build_kitchen(
 
 
 def build_kitchen_for_task(
-    task: Task, gui: bool = False, kitchen_map: KitchenMap | None = None, polyhedral_contacts: bool = False
+    task: Task,
+    gui: bool = False,
+    kitchen_map: KitchenMap | None = None,
+    polyhedral_contacts: bool = False,
+    visuals: bool = True,
 ) -> KitchenScene:
     """The kitchen for a parsed problem (the default kitchen unless ``kitchen_map`` is given)."""
     return build_kitchen(task.objects, task.init_atoms, gui=gui, kitchen_map=kitchen_map,
-                         polyhedral_contacts=polyhedral_contacts)
+                         polyhedral_contacts=polyhedral_contacts, visuals=visuals)
 
 
 def load_kitchen_problem(
