@@ -15,7 +15,7 @@ from kitchen_tamp.world import (
     Scene,
     make_collision_checker,
 )
-from kitchen_tamp.world.checked_pairs import CONTACT_PENETRATION_BOUND
+from kitchen_tamp.world.collision.checked_pairs import CONTACT_PENETRATION_BOUND
 from tests.world.conftest import down_rotation
 
 

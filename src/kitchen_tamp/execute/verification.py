@@ -12,7 +12,7 @@ intended (only the action's own objects, each at most
 Checked: the trajectory starts at the arm's home and is continuous; every
 waypoint is within the joints' ranges and the hand's opening; every segment is
 collision-free at states at most ``resolution`` rad apart, with every pair of
-``kitchen_tamp.world.checked_pairs`` checked (boxes riding the drawer against
+``kitchen_tamp.world.collision.checked_pairs`` checked (boxes riding the drawer against
 the cabinet while it moves); a box let go of stands on something; a hand holding
 a handle keeps to the drawer's slide and its travel; fingers never close on
 nothing the action names; after every action the scene's abstraction Ψ is the

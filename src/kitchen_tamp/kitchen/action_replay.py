@@ -17,7 +17,7 @@ Then, along the segment, at states ``resolution`` rad apart
   handle, by as much as the hand moves along the drawer's axis; a hand that
   pulls it past its stop, or moves across the axis or turns while holding the
   handle, is refused;
-- **collisions**: every pair of ``kitchen_tamp.world.checked_pairs`` with the
+- **collisions**: every pair of ``kitchen_tamp.world.collision.checked_pairs`` with the
   action's intended contacts (``contact_policy.intended_contacts``) allowed to
   ``CONTACT_PENETRATION_BOUND``; while the drawer moves, the boxes in it are
   checked against the cabinet too;
@@ -52,6 +52,7 @@ from kitchen_tamp.kitchen.robot_range import clipped_to_range, range_problem
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples, interpolate_segment
 from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
+from kitchen_tamp.world.collision.clearance_scan import LowestClearance
 
 HANDLE_HOLD_ANGLE: Final = 0.02
 """Largest turn (rad) of the hand while it holds a handle: about the contact bound over the
@@ -283,23 +284,22 @@ class _Replayer:
             joint = self.kitchen.map.openables[run.drawer].joint
             along = (self.kitchen.kitchen, [joint], openings[run.drawer][rows])
         if self.measure:
-            if along is None:
-                clearances = run.checker.min_clearance(qs)
+            if along is None:  # measured where the lowest or a collision can be (exact there)
+                found = run.checker.lowest_clearance(qs, max(self.result.min_clearance_m, 0.0))
             else:
-                clearances = run.checker.min_clearance_along(qs, *along)
-            lowest = int(np.argmin(clearances))
-            if clearances[lowest] < self.result.min_clearance_m:
-                self.result.min_clearance_m = float(clearances[lowest])
+                found = LowestClearance.of(run.checker.min_clearance_along(qs, *along))
+            if found.value < self.result.min_clearance_m:
+                self.result.min_clearance_m = found.value
                 self.result.closest_approach = self.where
-            bad = clearances < 0.0
-            depth = f" ({float(clearances[lowest]) * 1000:.1f} mm deep)"
+            collision = found.first_collision
+            depth = f" ({found.value * 1000:.1f} mm deep)"
         else:
             valid = run.checker.is_valid(qs) if along is None else run.checker.is_valid_along(qs, *along)
-            bad = ~valid
+            collision = None if valid.all() else int(np.argmin(valid))
             depth = ""
-        if not bad.any():
+        if collision is None:
             return True
-        first = int(np.argmax(bad))
+        first = collision
         at = None if along is None else (along[0], along[1], along[2][first : first + 1])
         pairs = ", ".join(f"{a}/{b}" for a, b in run.checker.colliding_pairs(qs[first], at))
         self.result.collision_free = False

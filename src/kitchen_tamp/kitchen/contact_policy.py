@@ -29,7 +29,7 @@ from kitchen_tamp.kitchen.abstraction import supports_of
 from kitchen_tamp.kitchen.errors import UnsupportedInitialStateError
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.world import BASE_LINK, AllowedContact, Body
-from kitchen_tamp.world.checked_pairs import CONTACT_PENETRATION_BOUND
+from kitchen_tamp.world.collision.checked_pairs import CONTACT_PENETRATION_BOUND
 from kitchen_tamp.world.contacts import closest_points, overlapping_links
 
 __all__ = [

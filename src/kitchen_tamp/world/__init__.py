@@ -23,7 +23,7 @@ from kitchen_tamp.world.camera import (
     tile,
     write_png,
 )
-from kitchen_tamp.world.collision import (
+from kitchen_tamp.world.collision.checker import (
     AllowedContact,
     BoolArray,
     KeptClearance,

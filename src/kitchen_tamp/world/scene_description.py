@@ -23,8 +23,8 @@ from types import MappingProxyType
 import numpy as np
 
 from kitchen_tamp.world.attachment import Attachment
-from kitchen_tamp.world.checked_pairs import CheckedLinkPair, CheckedPairs
-from kitchen_tamp.world.collision import AllowedContact, PyBulletCollisionChecker
+from kitchen_tamp.world.collision.checked_pairs import CheckedLinkPair, CheckedPairs
+from kitchen_tamp.world.collision.checker import AllowedContact, PyBulletCollisionChecker
 from kitchen_tamp.world.errors import UnknownNameError
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
@@ -65,7 +65,7 @@ class SceneDescription:
     """Everything a collision model needs to rebuild a scene snapshot and check the arm in it.
 
     ``checked_pairs`` are exactly the pairs ``PyBulletCollisionChecker`` checks
-    (see ``kitchen_tamp.world.checked_pairs``), each with the penetration it may
+    (see ``kitchen_tamp.world.collision.checked_pairs``), each with the penetration it may
     reach (an intended contact's bound; 0 for the rest).
     """
 

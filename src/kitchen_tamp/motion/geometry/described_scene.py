@@ -50,7 +50,7 @@ class DescribedAttachment(Protocol):
 
 
 class DescribedPair(Protocol):
-    """A checked link pair (see `kitchen_tamp.world.checked_pairs.CheckedLinkPair`)."""
+    """A checked link pair (see `kitchen_tamp.world.collision.checked_pairs.CheckedLinkPair`)."""
 
     @property
     def body_a(self) -> str: ...

@@ -9,7 +9,7 @@ arm's held where the description has it (the drawer, the fingers). Only the
 arm's joints change between queries.
 
 Collision filters leave exactly the pairs the description lists
-(``checked_pairs``: the pair policy that ``kitchen_tamp.world.checked_pairs``
+(``checked_pairs``: the pair policy that ``kitchen_tamp.world.collision.checked_pairs``
 decides for every collision model, read here as plain names), and a pair listed
 with an allowance (an intended contact) collides only when it penetrates deeper
 than that (a margin does not apply to it).

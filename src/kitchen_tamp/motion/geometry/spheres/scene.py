@@ -272,7 +272,7 @@ class SphereScene:
     def _checked_pairs(self, scene: DescribedScene) -> tuple[IndexArray, IndexArray]:
         """(group, box) pairs and (group, group) pairs that are checked."""
         tree_model = self.tree.model
-        # The robot's side of the described pair table (kitchen_tamp.world.checked_pairs); an
+        # The robot's side of the described pair table (kitchen_tamp.world.collision.checked_pairs); an
         # intended contact's pair is kept too (spheres then defer it to the exact model). A self
         # pair is checked when the description lists it and two moving joints part its links.
         pairs = scene.checked_pairs

@@ -20,6 +20,7 @@ than ``Pose`` objects: tens of microseconds per configuration.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -30,13 +31,25 @@ from numpy.typing import NDArray
 
 from kitchen_tamp.joint_spacing import interior_fractions
 from kitchen_tamp.world.attachment import Attachment
-from kitchen_tamp.world.bodies import BASE_LINK, Body
-from kitchen_tamp.world.checked_pairs import BOUNDS_SLACK, CheckedLinkPair, CheckedPairs, checked_pairs_of
-from kitchen_tamp.world.checked_pairs import AllowedContact as AllowedContact
-from kitchen_tamp.world.checked_pairs import KeptClearance as KeptClearance
+from kitchen_tamp.world.bodies import Body
+from kitchen_tamp.world.collision.carried_placement import CarriedPlacement
+from kitchen_tamp.world.collision.checked_pairs import (
+    BOUNDS_SLACK,
+    CheckedLinkPair,
+    CheckedPairs,
+    checked_pairs_of,
+)
+from kitchen_tamp.world.collision.checked_pairs import AllowedContact as AllowedContact
+from kitchen_tamp.world.collision.checked_pairs import KeptClearance as KeptClearance
+from kitchen_tamp.world.collision.clearance_scan import (
+    LowestClearance,
+    lowest_clearance,
+    pair_values,
+    reach_weights,
+)
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
-from kitchen_tamp.world.transforms import FloatArray, Pose
+from kitchen_tamp.world.transforms import FloatArray
 
 BoolArray = NDArray[np.bool_]
 
@@ -68,30 +81,6 @@ def _nearly_equal(a: tuple[RawBodyState, ...], b: tuple[RawBodyState, ...]) -> b
     flat_a = np.fromiter(_flatten(_flatten(a)), dtype=float)
     flat_b = np.fromiter(_flatten(_flatten(b)), dtype=float)
     return len(flat_a) == len(flat_b) and bool(np.max(np.abs(flat_a - flat_b)) <= STATE_TOLERANCE)
-
-
-class _CarriedPlacement:
-    """Moves a carried body with its parent link, in raw PyBullet transforms when it can."""
-
-    def __init__(self, attachment: Attachment) -> None:
-        parent, child = attachment.parent, attachment.child
-        self.attachment = attachment
-        self.client, self.parent_uid, self.child_uid = parent.client, parent.uid, child.uid
-        self.link = parent.link_index(attachment.parent_link)
-        child_com = Pose.from_parts(*p.getBasePositionAndOrientation(child.uid, physicsClientId=self.client))
-        offset = attachment.parent_link_from_child @ child.base_pose().inverse() @ child_com
-        self.offset = (offset.position, offset.quaternion)
-
-    def apply(self) -> None:
-        """Put the child where its parent link now says."""
-        if self.link == BASE_LINK:
-            self.attachment.apply()
-            return
-        link = p.getLinkState(
-            self.parent_uid, self.link, computeForwardKinematics=True, physicsClientId=self.client
-        )
-        world = p.multiplyTransforms(link[4], link[5], *self.offset)
-        p.resetBasePositionAndOrientation(self.child_uid, world[0], world[1], physicsClientId=self.client)
 
 
 Along = tuple[Body, Sequence[str], FloatArray]
@@ -127,7 +116,7 @@ class PyBulletCollisionChecker:
         self._joints = tuple(tuple(j.index for j in b.joints if j.movable) for b in self._bodies)
         self._snapshot = self._read_state()
         self._attachments = _in_dependency_order(scene.attachments)
-        self._placements = tuple(_CarriedPlacement(a) for a in self.carried)
+        self._placements = tuple(CarriedPlacement(a) for a in self.carried)
         self._arm = robot.body.joint_indices(robot.description.arm_joints)
         self._robot_slot = self._bodies.index(robot.body)
         self._arm_in_robot_state = [self._joints[self._robot_slot].index(i) for i in self._arm]
@@ -231,19 +220,32 @@ class PyBulletCollisionChecker:
         horizon = max(self.margin, checked.kept_horizon)
         return any(d < 0.0 for _, d in self._distances(checked, horizon, static_bounds))
 
-    def _clearance_here(self, checked: CheckedPairs, static_bounds: FloatArray) -> float:
+    def _clearance_here(
+        self, checked: CheckedPairs, static_bounds: FloatArray, pair_bounds: FloatArray | None = None
+    ) -> float:
         """Smallest distance up to the horizon: pairs in order of their bounds' gap until the
         gap alone rules a pair out. (Each pair is asked up to the full horizon: a smaller
-        threshold changes PyBullet's depth estimates of deep penetrations.)"""
+        threshold changes PyBullet's depth estimates of deep penetrations.) Given
+        ``pair_bounds``, fills it with a lower bound on every pair's distance plus allowance:
+        measured, or its bounds' gap, or the horizon."""
         horizon, client = CLEARANCE_HORIZON, self._client
         best = horizon
-        for k, gap in checked.candidates(horizon, static_bounds):
+        if pair_bounds is not None:
+            pair_bounds[:] = horizon + checked.allowances
+        candidates = checked.candidates(horizon, static_bounds)
+        for k, gap in candidates:
             if gap > best + BOUNDS_SLACK:
+                if pair_bounds is not None:
+                    pair_bounds[k] = gap + checked.allowances[k]
+                    for rest, rest_gap in candidates:
+                        pair_bounds[rest] = rest_gap + checked.allowances[rest]
                 break
             uid_a, link_a, uid_b, link_b = checked.pair_ids[k]
             allowance = float(checked.allowances[k])
             for point in p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client):
                 distance = float(point[8]) + allowance
+                if pair_bounds is not None:
+                    pair_bounds[k] = min(pair_bounds[k], distance)
                 if allowance == 0.0 or distance < 0.0:  # an intended contact counts only when too deep
                     best = min(best, distance)
         return best
@@ -311,6 +313,33 @@ class PyBulletCollisionChecker:
         capped at ``CLEARANCE_HORIZON``; an intended contact counts only when deeper than
         allowed, from its allowed depth."""
         return self._clearances(np.atleast_2d(np.asarray(qs, dtype=float)))
+
+    def lowest_clearance(self, qs: FloatArray, ceiling: float = float("inf")) -> LowestClearance:
+        """The lowest of ``min_clearance(qs)``, its first row and the first negative row, measuring
+        only the rows where they can be (`clearance_scan`); exact whenever the lowest is below
+        ``ceiling``."""
+        batch, checked, client = np.atleast_2d(np.asarray(qs, dtype=float)), self._checked, self._client
+        if len(batch) <= 2:
+            return LowestClearance.of(self._clearances(batch))
+        with self._in_snapshot(only_arm_moves=True):
+
+            def measure(i: int) -> tuple[float, FloatArray]:
+                pair_bounds = np.empty(len(checked.pairs))
+                return self._clearance_here(checked, self._place(batch[i]), pair_bounds), pair_bounds
+
+            def measure_pairs(i: int, pairs: NDArray[np.intp]) -> FloatArray:
+                self._place(batch[i])
+                return pair_values(checked, pairs, CLEARANCE_HORIZON, client)
+
+            weights = self._reach_weights
+            if weights is None:
+                return LowestClearance.of(np.array([measure(i)[0] for i in range(len(batch))]))
+            return lowest_clearance(batch, measure, measure_pairs, weights, checked.allowances > 0.0, ceiling)
+
+    @functools.cached_property
+    def _reach_weights(self) -> FloatArray | None:
+        """`reach_weights` of the pairs checked with the arm alone moving (first read in the snapshot)."""
+        return reach_weights(self._checked, self.robot, self._arm, self.carried)
 
     def min_clearance_along(
         self, qs: FloatArray, body: Body, joint_names: Sequence[str], joint_values: FloatArray

@@ -1,0 +1,207 @@
+"""The lowest clearance along a run of arm configurations, measured exactly only where it can matter.
+
+The kinematic judge wants, per run of states, the smallest clearance, the first state where it
+is reached and the first state that collides; measuring every pair at every state (PyBullet's
+``getClosestPoints``, about 0.2 ms a state in the kitchen) is most of its time. But a pair's
+distance cannot change faster than its links move: turning arm joint ``k`` by ``dq`` moves every
+point of a link it carries by at most ``|dq|`` times the point's distance from the joint's axis,
+and that distance is at most the link's reach from the joint (`reach_weights`: the lengths of the
+fixed offsets between the link frames down the chain, plus the link's extent around its own frame;
+a carried body counts as the link holding it). So a pair measured at ``v`` at state ``a`` is at
+least ``v - W_p . |q - q_a|`` at state ``q``, where ``W_p`` sums, per joint, the reach of whichever
+of the pair's two sides that joint moves alone (a joint that moves both moves them together).
+
+`lowest_clearance` measures every ``PREPASS_STRIDE``-th state and the last, which gives a threshold
+``T`` (the lowest clearance met so far, or the ``ceiling`` the caller already has, never below 0),
+then walks the states in order and measures a state only when some pair's bound from the measured
+states on either side of it does not prove the pair above ``T`` (or, for an intended contact,
+which counts only when deeper than allowed, above 0). A state it does not measure is certified
+above ``T``: it can be neither the lowest (nor tie with it) nor a collision. So the lowest value,
+the first state reaching it and the first colliding state are exactly those of measuring every
+state, whenever the lowest is below the ceiling (tests/world/test_clearance_scan.py holds the two
+together, and every bound to the distances PyBullet measures).
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Final
+
+import numpy as np
+import numpy.typing as npt
+import pybullet as p
+
+from kitchen_tamp.world.attachment import Attachment
+from kitchen_tamp.world.bodies import BASE_LINK, Body
+from kitchen_tamp.world.collision.checked_pairs import CheckedPairs
+from kitchen_tamp.world.robot import Robot
+from kitchen_tamp.world.transforms import FloatArray
+
+IntArray = npt.NDArray[np.intp]
+BoolArray = npt.NDArray[np.bool_]
+
+PREPASS_STRIDE: Final = 16
+"""Every this many states (and the last) are measured first, for the threshold and as anchors."""
+
+BOUND_SLACK: Final = 1e-4
+"""A state is measured unless every pair's bound clears the threshold by more than this (m): room
+for PyBullet's distance tolerance, far above it."""
+
+
+@dataclass(frozen=True)
+class LowestClearance:
+    """What the judge needs of a run's clearances: the lowest (its first state) and the first
+    state closer than allowed (negative clearance), or None; and how many states were measured."""
+
+    index: int
+    value: float
+    first_collision: int | None
+    measured: int
+
+    @staticmethod
+    def of(clearances: FloatArray) -> LowestClearance:
+        """The summary of clearances measured at every state."""
+        bad = np.flatnonzero(clearances < 0.0)
+        lowest = int(np.argmin(clearances))
+        return LowestClearance(lowest, float(clearances[lowest]), int(bad[0]) if len(bad) else None,
+                               len(clearances))
+
+
+def _frame_origin(body: Body, link: int) -> FloatArray:
+    state = p.getLinkState(body.uid, link, computeForwardKinematics=True, physicsClientId=body.client)
+    return np.asarray(state[4], dtype=float)
+
+
+def _extent(body: Body, link: int, around: FloatArray) -> float:
+    """The farthest corner of the link's axis-aligned bounds from ``around``: the link's shapes lie
+    no farther from it."""
+    low, high = (np.asarray(c, dtype=float) for c in p.getAABB(body.uid, link, physicsClientId=body.client))
+    corners = np.array(list(itertools.product(*zip(low, high, strict=True))))
+    return float(np.max(np.linalg.norm(corners - around, axis=1)))
+
+
+def reach_weights(
+    checked: CheckedPairs, robot: Robot, arm: Sequence[int], carried: Sequence[Attachment]
+) -> FloatArray | None:
+    """Per checked pair and arm joint, how far one radian of that joint alone can change the pair's
+    distance (m/rad), from the scene as it is now (the fingers and what the hand carries fixed);
+    None when an arm joint is not revolute (then no bound is used)."""
+    body = robot.body
+    joints = {j.index: j for j in body.joints}
+    if not all(joints[k].revolute for k in arm):
+        return None
+    parent = {j.index: j.parent_index for j in body.joints}
+    origin: dict[int, FloatArray] = {}
+
+    def origin_of(link: int) -> FloatArray:
+        if link not in origin:
+            origin[link] = _frame_origin(body, link)
+        return origin[link]
+
+    def chain_reach(link: int) -> dict[int, float]:
+        """Per arm joint moving ``link`` (by its child link index): the joint's distance bound to the
+        link's frame origin, the fixed offsets from the link up to the joint's child link summed."""
+        reach, length = {}, 0.0
+        while link != BASE_LINK:
+            if link in arm:
+                reach[link] = length
+            up = parent[link]
+            if up == BASE_LINK:
+                break
+            length += float(np.linalg.norm(origin_of(link) - origin_of(up)))
+            link = up
+        return reach
+
+    held_by = {a.child.uid: a for a in carried}
+    side_reach: dict[tuple[int, int], dict[int, float]] = {}
+
+    def reach_of(side: Body, link: int) -> dict[int, float]:
+        key = (side.uid, link)
+        if key not in side_reach:
+            if side is body:
+                chain, holder = chain_reach(link), link
+            elif side.uid in held_by:
+                holder = body.link_index(held_by[side.uid].parent_link)
+                chain = chain_reach(holder) if holder != BASE_LINK else {}
+            else:
+                side_reach[key] = {}
+                return side_reach[key]
+            extent = _extent(side, link, origin_of(holder)) if chain else 0.0
+            side_reach[key] = {joint: length + extent for joint, length in chain.items()}
+        return side_reach[key]
+
+    weights = np.zeros((len(checked.pairs), len(arm)))
+    for row, (body_a, link_a, body_b, link_b) in enumerate(checked.pairs):
+        reach_a, reach_b = reach_of(body_a, link_a), reach_of(body_b, link_b)
+        for column, joint in enumerate(arm):
+            if (joint in reach_a) != (joint in reach_b):
+                weights[row, column] = reach_a.get(joint, 0.0) + reach_b.get(joint, 0.0)
+    return weights
+
+
+def pair_values(checked: CheckedPairs, pairs: IntArray, horizon: float, client: int) -> FloatArray:
+    """The given pairs' distances plus allowances at the current state (the horizon plus allowance
+    for a pair farther than it)."""
+    values = []
+    for k in pairs.tolist():
+        uid_a, link_a, uid_b, link_b = checked.pair_ids[k]
+        points = p.getClosestPoints(uid_a, uid_b, horizon, link_a, link_b, physicsClientId=client)
+        values.append(min((float(point[8]) for point in points), default=horizon) + checked.allowances[k])
+    return np.array(values)
+
+
+Measure = Callable[[int], tuple[float, FloatArray]]
+"""The exact clearance of state ``i`` and a lower bound on every pair's value (distance plus
+allowance) there."""
+MeasurePairs = Callable[[int, IntArray], FloatArray]
+"""The values of the given pairs at state ``i`` (the horizon plus allowance beyond it)."""
+
+
+def lowest_clearance(
+    qs: FloatArray,
+    measure: Measure,
+    measure_pairs: MeasurePairs,
+    weights: FloatArray,
+    intended: BoolArray,
+    ceiling: float,
+) -> LowestClearance:
+    """`LowestClearance` of the states ``qs``: every state ``PREPASS_STRIDE`` apart (and the last)
+    by ``measure``, then at the states between only the pairs whose bounds (pairs x joints
+    ``weights``; ``intended`` marks the pairs counted only when negative) do not prove them above
+    the threshold, by ``measure_pairs`` (see the module's docstring). Exact whenever the lowest
+    clearance is below ``ceiling`` (pass the lowest the caller has met, or infinity)."""
+    count = len(qs)
+    values = np.full(count, np.inf)
+    full: dict[int, FloatArray] = {}
+    anchors = sorted(set(range(0, count, PREPASS_STRIDE)) | {count - 1})
+    for i in anchors:
+        values[i], full[i] = measure(i)
+    threshold = max(0.0, min(ceiling, float(values.min())))
+    measured = len(anchors)
+    for before, after in itertools.pairwise(anchors):
+        # Lower bounds on every pair's value at the states between: from the state after, and from
+        # the last state measured before (each pair's bound there carried to it).
+        from_after = full[after] - np.abs(qs[before + 1 : after] - qs[after]) @ weights.T
+        known, known_at, start = full[before], before, before + 1
+        while start < after:
+            low = np.maximum(known - np.abs(qs[start:after] - qs[known_at]) @ weights.T,
+                             from_after[start - before - 1 :])
+            below = low <= np.where(intended, 0.0, threshold) + BOUND_SLACK
+            rows = np.flatnonzero(below.any(axis=1))
+            if len(rows) == 0:
+                break  # every pair proved above the threshold at every state left
+            row = int(rows[0])
+            i, near = start + row, np.flatnonzero(below[row])
+            found = measure_pairs(i, near)
+            known = low[row].copy()
+            known[near] = found
+            known_at, start = i, i + 1
+            counted = found[~intended[near] | (found < 0.0)]
+            values[i] = float(counted.min()) if len(counted) else np.inf
+            threshold = max(0.0, min(threshold, values[i]))
+            measured += 1
+    bad = np.flatnonzero(values < 0.0)
+    lowest = int(np.argmin(values))
+    return LowestClearance(lowest, float(values[lowest]), int(bad[0]) if len(bad) else None, measured)
