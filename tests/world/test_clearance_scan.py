@@ -100,6 +100,10 @@ def test_the_scan_finds_what_measuring_every_state_finds(
             else:
                 assert found.value >= ceiling
             skipped += len(qs) - found.measured
+        until = checker.lowest_clearance(qs, 0.0, until_collision=True)
+        assert until.first_collision == expected.first_collision
+        valid = checker.is_valid(qs)  # the small-horizon check agrees on where the first collision is
+        assert until.first_collision == (None if valid.all() else int(np.argmin(valid)))
         colliding += expected.first_collision is not None
         free += expected.first_collision is None
     assert colliding and free  # both kinds of run were met

@@ -24,10 +24,11 @@ Then, along the segment, at states ``resolution`` rad apart
 - fingers that close and hold nothing the action names are a problem.
 
 The judge (``kitchen_tamp.execute.verification``) replays every action this way
-and measures clearances; a planner replays the action it just sampled the same
-way (``measure=False``: first problem only, validity instead of clearance) and
-keeps the sample only if nothing is found, so a step it accepts is a step the
-judge accepts.
+and measures clearances (``world.collision.clearance_scan``: exact wherever the closest
+approach or a collision can be); a planner replays the action it just sampled the same
+way (``measure=False``: first problem only, the same measure up to the first
+collision) and keeps the sample only if nothing is found, so a step it accepts is a
+step the judge accepts.
 """
 
 from __future__ import annotations
@@ -293,8 +294,11 @@ class _Replayer:
                 self.result.closest_approach = self.where
             collision = found.first_collision
             depth = f" ({found.value * 1000:.1f} mm deep)"
+        elif along is None:  # the same measure as above, up to the first collision
+            collision = run.checker.lowest_clearance(qs, 0.0, until_collision=True).first_collision
+            depth = ""
         else:
-            valid = run.checker.is_valid(qs) if along is None else run.checker.is_valid_along(qs, *along)
+            valid = run.checker.is_valid_along(qs, *along)
             collision = None if valid.all() else int(np.argmin(valid))
             depth = ""
         if collision is None:

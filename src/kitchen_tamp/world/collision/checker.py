@@ -314,10 +314,12 @@ class PyBulletCollisionChecker:
         allowed, from its allowed depth."""
         return self._clearances(np.atleast_2d(np.asarray(qs, dtype=float)))
 
-    def lowest_clearance(self, qs: FloatArray, ceiling: float = float("inf")) -> LowestClearance:
+    def lowest_clearance(
+        self, qs: FloatArray, ceiling: float = float("inf"), until_collision: bool = False
+    ) -> LowestClearance:
         """The lowest of ``min_clearance(qs)``, its first row and the first negative row, measuring
         only the rows where they can be (`clearance_scan`); exact whenever the lowest is below
-        ``ceiling``."""
+        ``ceiling``; with ``until_collision`` (and a ``ceiling`` of 0), only the first negative row."""
         batch, checked, client = np.atleast_2d(np.asarray(qs, dtype=float)), self._checked, self._client
         if len(batch) <= 2:
             return LowestClearance.of(self._clearances(batch))
@@ -334,7 +336,8 @@ class PyBulletCollisionChecker:
             weights = self._reach_weights
             if weights is None:
                 return LowestClearance.of(np.array([measure(i)[0] for i in range(len(batch))]))
-            return lowest_clearance(batch, measure, measure_pairs, weights, checked.allowances > 0.0, ceiling)
+            intended, until = checked.allowances > 0.0, until_collision
+            return lowest_clearance(batch, measure, measure_pairs, weights, intended, ceiling, until)
 
     @functools.cached_property
     def _reach_weights(self) -> FloatArray | None:

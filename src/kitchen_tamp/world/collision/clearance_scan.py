@@ -166,21 +166,31 @@ def lowest_clearance(
     weights: FloatArray,
     intended: BoolArray,
     ceiling: float,
+    until_collision: bool = False,
 ) -> LowestClearance:
     """`LowestClearance` of the states ``qs``: every state ``PREPASS_STRIDE`` apart (and the last)
     by ``measure``, then at the states between only the pairs whose bounds (pairs x joints
     ``weights``; ``intended`` marks the pairs counted only when negative) do not prove them above
     the threshold, by ``measure_pairs`` (see the module's docstring). Exact whenever the lowest
-    clearance is below ``ceiling`` (pass the lowest the caller has met, or infinity)."""
+    clearance is below ``ceiling`` (pass the lowest the caller has met, or infinity).
+
+    With ``until_collision`` only the first collision is looked for (pass a ``ceiling`` of 0): the
+    states are measured in order and the scan stops at the first collision, so the lowest is
+    only that of the states measured."""
     count = len(qs)
     values = np.full(count, np.inf)
     full: dict[int, FloatArray] = {}
     anchors = sorted(set(range(0, count, PREPASS_STRIDE)) | {count - 1})
-    for i in anchors:
+    for i in anchors[:1] if until_collision else anchors:
         values[i], full[i] = measure(i)
     threshold = max(0.0, min(ceiling, float(values.min())))
-    measured = len(anchors)
+    measured = len(full)
     for before, after in itertools.pairwise(anchors):
+        if until_collision:
+            if values[before] < 0.0:
+                break  # the first collision: every state before it was proved or measured free
+            values[after], full[after] = measure(after)
+            measured += 1
         # Lower bounds on every pair's value at the states between: from the state after, and from
         # the last state measured before (each pair's bound there carried to it).
         from_after = full[after] - np.abs(qs[before + 1 : after] - qs[after]) @ weights.T
@@ -202,6 +212,10 @@ def lowest_clearance(
             values[i] = float(counted.min()) if len(counted) else np.inf
             threshold = max(0.0, min(threshold, values[i]))
             measured += 1
+            if until_collision and values[i] < 0.0:
+                break
+        if until_collision and bool(np.any(values[before + 1 : after] < 0.0)):
+            break
     bad = np.flatnonzero(values < 0.0)
     lowest = int(np.argmin(values))
     return LowestClearance(lowest, float(values[lowest]), int(bad[0]) if len(bad) else None, measured)
