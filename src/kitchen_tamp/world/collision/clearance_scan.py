@@ -25,6 +25,7 @@ together, and every bound to the distances PyBullet measures).
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Final
@@ -69,17 +70,11 @@ class LowestClearance:
                                len(clearances))
 
 
-def _frame_origin(body: Body, link: int) -> FloatArray:
-    state = p.getLinkState(body.uid, link, computeForwardKinematics=True, physicsClientId=body.client)
-    return np.asarray(state[4], dtype=float)
-
-
-def _extent(body: Body, link: int, around: FloatArray) -> float:
+def _extent(body: Body, link: int, around: Sequence[float]) -> float:
     """The farthest corner of the link's axis-aligned bounds from ``around``: the link's shapes lie
     no farther from it."""
-    low, high = (np.asarray(c, dtype=float) for c in p.getAABB(body.uid, link, physicsClientId=body.client))
-    corners = np.array(list(itertools.product(*zip(low, high, strict=True))))
-    return float(np.max(np.linalg.norm(corners - around, axis=1)))
+    low, high = p.getAABB(body.uid, link, physicsClientId=body.client)
+    return max(math.dist(corner, around) for corner in itertools.product(*zip(low, high, strict=True)))
 
 
 def reach_weights(
@@ -89,56 +84,46 @@ def reach_weights(
     distance (m/rad), from the scene as it is now (the fingers and what the hand carries fixed);
     None when an arm joint is not revolute (then no bound is used)."""
     body = robot.body
-    joints = {j.index: j for j in body.joints}
-    if not all(joints[k].revolute for k in arm):
+    if not all(joint.revolute for joint in body.joints if joint.index in arm):
         return None
     parent = {j.index: j.parent_index for j in body.joints}
-    origin: dict[int, FloatArray] = {}
+    links = sorted(parent)
+    states = p.getLinkStates(body.uid, links, computeForwardKinematics=True, physicsClientId=body.client)
+    origin = {link: state[4] for link, state in zip(links, states, strict=True)}
+    column = {joint: c for c, joint in enumerate(arm)}
 
-    def origin_of(link: int) -> FloatArray:
-        if link not in origin:
-            origin[link] = _frame_origin(body, link)
-        return origin[link]
-
-    def chain_reach(link: int) -> dict[int, float]:
-        """Per arm joint moving ``link`` (by its child link index): the joint's distance bound to the
-        link's frame origin, the fixed offsets from the link up to the joint's child link summed."""
-        reach, length = {}, 0.0
+    def chain_reach(link: int) -> FloatArray:
+        """Per arm joint: the joint's distance bound to ``link``'s frame origin (the fixed offsets
+        from the link up to the joint's child link summed), or NaN when it does not move the link."""
+        reach, length = np.full(len(arm), np.nan), 0.0
         while link != BASE_LINK:
-            if link in arm:
-                reach[link] = length
+            if link in column:
+                reach[column[link]] = length
             up = parent[link]
             if up == BASE_LINK:
                 break
-            length += float(np.linalg.norm(origin_of(link) - origin_of(up)))
+            length += math.dist(origin[link], origin[up])
             link = up
         return reach
 
-    held_by = {a.child.uid: a for a in carried}
-    side_reach: dict[tuple[int, int], dict[int, float]] = {}
-
-    def reach_of(side: Body, link: int) -> dict[int, float]:
-        key = (side.uid, link)
-        if key not in side_reach:
-            if side is body:
-                chain, holder = chain_reach(link), link
-            elif side.uid in held_by:
-                holder = body.link_index(held_by[side.uid].parent_link)
-                chain = chain_reach(holder) if holder != BASE_LINK else {}
-            else:
-                side_reach[key] = {}
-                return side_reach[key]
-            extent = _extent(side, link, origin_of(holder)) if chain else 0.0
-            side_reach[key] = {joint: length + extent for joint, length in chain.items()}
-        return side_reach[key]
-
-    weights = np.zeros((len(checked.pairs), len(arm)))
-    for row, (body_a, link_a, body_b, link_b) in enumerate(checked.pairs):
-        reach_a, reach_b = reach_of(body_a, link_a), reach_of(body_b, link_b)
-        for column, joint in enumerate(arm):
-            if (joint in reach_a) != (joint in reach_b):
-                weights[row, column] = reach_a.get(joint, 0.0) + reach_b.get(joint, 0.0)
-    return weights
+    held_by = {a.child.uid: body.link_index(a.parent_link) for a in carried}
+    sides: dict[tuple[int, int], int] = {}
+    reaches: list[FloatArray] = []
+    for side, link in itertools.chain.from_iterable(((a, i), (b, j)) for a, i, b, j in checked.pairs):
+        if (side.uid, link) in sides:
+            continue
+        holder = link if side is body else held_by.get(side.uid, BASE_LINK)
+        reach = chain_reach(holder) if holder != BASE_LINK else np.full(len(arm), np.nan)
+        if not np.all(np.isnan(reach)):
+            reach += _extent(side, link, origin[holder])
+        sides[side.uid, link] = len(reaches)
+        reaches.append(reach)
+    table = np.array(reaches)
+    moved, reach_table = ~np.isnan(table), np.nan_to_num(table)
+    side_a = np.array([sides[a.uid, i] for a, i, _, _ in checked.pairs], dtype=np.intp)
+    side_b = np.array([sides[b.uid, j] for _, _, b, j in checked.pairs], dtype=np.intp)
+    # A joint moving both sides moves them together; one moving a single side moves it by its reach.
+    return np.where(moved[side_a] != moved[side_b], reach_table[side_a] + reach_table[side_b], 0.0)
 
 
 def pair_values(checked: CheckedPairs, pairs: IntArray, horizon: float, client: int) -> FloatArray:
