@@ -207,7 +207,13 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
     handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget)
     if (handed_over := handover.search()) is not None:
         return handed_over
+    clock = time.process_time()
     root_evaluation = evaluator.root()
+    if root_evaluation.h_ff * (time.process_time() - clock) > loading.HANDOVER_COST_SECONDS:
+        # Even the shortest search to expect costs more in Python than handing over.
+        handover.due_at = 0.0
+        if (handed_over := handover.search()) is not None:
+            return handed_over
     queues.push(_values(root_evaluation, heuristics), (None, root), preferred=False)
     progress = _Progress(_values(root_evaluation, heuristics))
     expanded, generated, evaluated, check_at = 0, 1, 0, 0.0

@@ -32,6 +32,12 @@ time: about what importing numpy and laying out the arrays cost (0.17-0.25 s, me
 A clock, not a count, decides here, and that keeps runs deterministic: the kernel takes the Python search's
 steps, so the plan and the counts do not depend on when the search hands over."""
 
+HANDOVER_COST_SECONDS = 0.08
+"""What handing over costs in a fresh process, about: numpy's import and the arrays laid out (0.065-0.095 s
+of CPU on a quiet machine, docs/planner.md). A search whose shortest likely run in Python (the root's
+h_FF evaluations, each at the root's cost) costs more than this hands over at once: it would pay more in
+Python than the hand-over and the kernel's own search together."""
+
 _HERE = Path(__file__).resolve().parent
 AHEAD_OF_TIME = AheadOfTimeModule("greedy_search_", _HERE / "__pycache__",
                                   (_HERE / "greedy_kernel.py", _HERE.parent / "relaxed_kernel.py"),
