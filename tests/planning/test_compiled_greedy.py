@@ -45,6 +45,7 @@ def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expans
     (the hand-over by CPU time is off)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
     monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", INFINITY)
+    monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", INFINITY)
     return alternating_greedy_search(task, SearchBudget(None, expansions), **options)
 
 
@@ -128,6 +129,24 @@ def test_a_search_hands_over_before_its_evaluation_would_import_numba() -> None:
               "counting.COMPILED_AFTER_WORK = 3 * work\n"
               "loading.HANDOVER_AFTER_SECONDS = 1e9\n")
     assert not _numba_imported_by_gbfs("sokoban", "task23.pddl", before)
+
+
+def test_a_search_whose_root_is_dear_hands_over_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    if loading.ahead_of_time_kernel() is None:
+        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+    task = _load("sokoban", "task23.pddl")
+    python = _search(task, 10**18, monkeypatch)
+    evaluated: list[object] = []
+    evaluate = landmark_count_module.LandmarkEvaluator.evaluate
+
+    def counted(self: landmark_count_module.LandmarkEvaluator, *args: object) -> object:
+        evaluated.append(args)
+        return evaluate(self, *args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(landmark_count_module.LandmarkEvaluator, "evaluate", counted)
+    monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", 0.0)  # any root costs more than handing over
+    assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
+    assert len(evaluated) == 2  # the root, in Python, twice; then every state in the kernel
 
 
 def test_the_hand_over_by_cpu_time_gives_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
