@@ -292,18 +292,17 @@ class _Replayer:
             if found.value < self.result.min_clearance_m:
                 self.result.min_clearance_m = found.value
                 self.result.closest_approach = self.where
-            collision = found.first_collision
+            first = found.first_collision
             depth = f" ({found.value * 1000:.1f} mm deep)"
         elif along is None:  # the same measure as above, up to the first collision
-            collision = run.checker.lowest_clearance(qs, 0.0, until_collision=True).first_collision
+            first = run.checker.lowest_clearance(qs, 0.0, until_collision=True).first_collision
             depth = ""
         else:
             valid = run.checker.is_valid_along(qs, *along)
-            collision = None if valid.all() else int(np.argmin(valid))
+            first = None if valid.all() else int(np.argmin(valid))
             depth = ""
-        if collision is None:
+        if first is None:
             return True
-        first = collision
         at = None if along is None else (along[0], along[1], along[2][first : first + 1])
         pairs = ", ".join(f"{a}/{b}" for a, b in run.checker.colliding_pairs(qs[first], at))
         self.result.collision_free = False

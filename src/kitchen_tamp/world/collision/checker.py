@@ -2,7 +2,8 @@
 
 A ``PyBulletCollisionChecker`` is the only thing a motion planner needs from the world:
 ``is_valid`` over a batch of configurations, ``segment_valid`` between two of
-them, the joint limits, and ``min_clearance`` for verification. It captures the
+them, the joint limits, and ``min_clearance`` for verification (``lowest_clearance``: a run's
+closest approach and first collision, measured only where they can be, ``clearance_scan``). It captures the
 scene when it is made (what the arm carries, where the drawer is), so it stays
 right even if the scene changes later, and it always leaves the scene as it
 found it.

@@ -11,15 +11,17 @@ a carried body counts as the link holding it). So a pair measured at ``v`` at st
 least ``v - W_p . |q - q_a|`` at state ``q``, where ``W_p`` sums, per joint, the reach of whichever
 of the pair's two sides that joint moves alone (a joint that moves both moves them together).
 
-`lowest_clearance` measures every ``PREPASS_STRIDE``-th state and the last, which gives a threshold
-``T`` (the lowest clearance met so far, or the ``ceiling`` the caller already has, never below 0),
-then walks the states in order and measures a state only when some pair's bound from the measured
-states on either side of it does not prove the pair above ``T`` (or, for an intended contact,
-which counts only when deeper than allowed, above 0). A state it does not measure is certified
-above ``T``: it can be neither the lowest (nor tie with it) nor a collision. So the lowest value,
-the first state reaching it and the first colliding state are exactly those of measuring every
-state, whenever the lowest is below the ceiling (tests/world/test_clearance_scan.py holds the two
-together, and every bound to the distances PyBullet measures).
+`lowest_clearance` measures every ``PREPASS_STRIDE``-th state and the last fully, which gives a
+threshold ``T`` (the lowest clearance met so far, or the ``ceiling`` the caller already has, never
+below 0), then walks the states between in order and, at each, measures only the pairs whose bound
+from the states measured on either side does not prove them above ``T`` (or, for an intended
+contact, which counts only when deeper than allowed, above 0). What it does not measure is proved
+above ``T``: a state can be neither the lowest (nor tie with it) nor a collision through it. So the
+lowest value, the first state reaching it and the first colliding state are exactly those of
+measuring every pair at every state, whenever the lowest is below the ceiling
+(tests/world/test_clearance_scan.py holds the two together, and every bound to the distances
+PyBullet measures). With ``until_collision`` (a ceiling of 0) it looks only for the first collision,
+in order, and stops there: the planner's replay of a sample.
 """
 
 from __future__ import annotations
