@@ -141,6 +141,34 @@ def test_the_fast_reader_takes_the_files_we_ship_and_reads_them_as_the_package_d
     assert _normal(fast_problem) == _normal(_pddl_problem(problem, problem_text))
 
 
+def test_either_in_a_domains_variables_is_read_as_the_package_reads_it() -> None:
+    domain = IPC / "zenotravel" / "domain.pddl"  # (at ?x - (either person aircraft) ?c - city)
+    text = domain.read_text()
+    either = "(either person aircraft)"
+    assert either in text
+    taken = {
+        "as shipped": text,
+        "one type": text.replace(either, "(either person)"),
+        "a type twice": text.replace(either, "(either person person)"),
+        "an action's parameter": text.replace("(?p - person ?a - aircraft ?c - city)",
+                                              "(?p - (either person aircraft) ?a - aircraft ?c - city)", 1),
+    }
+    for what, variant in taken.items():
+        fast = read_domain_text(variant)
+        assert fast is not None, what
+        assert _normal(fast) == _normal(_pddl_domain(domain, variant)), what
+    left = {  # each refused by the package, or (the last two) outside what the fast reader reads
+        "object among the types": text.replace(either, "(either object person)"),
+        "an undeclared type": text.replace(either, "(either person plane)"),
+        "no type": text.replace(either, "(either)"),
+        "without :typing": text.replace("(:requirements :typing)", "(:requirements :strips)"),
+        "a capital keyword": text.replace(either, "(EITHER person aircraft)"),
+        "in the types": text.replace("flevel - object", "flevel - (either object city)"),
+    }
+    for what, variant in left.items():
+        assert read_domain_text(variant) is None, what
+
+
 @pytest.mark.slow
 def test_a_mutated_file_is_read_as_the_package_reads_it_or_left_to_it(tmp_path: Path) -> None:
     rng = random.Random(20261130)

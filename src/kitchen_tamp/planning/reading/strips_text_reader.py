@@ -6,8 +6,8 @@ STRIPS file is a handful of nested lists. This reader covers the fragment we
 plan on, written as the ``pddl`` grammar asks (typing, constants, negative
 preconditions, equality, conjunctions of literals, sections in the grammar's
 order, lowercase keywords), and answers ``None`` for anything else or anything
-the package might object to (other requirements, ``either``, numbers, an empty
-precondition, a grammar word or a refused pattern used as a name, a name
+the package might object to (other requirements, ``either`` outside a domain's
+variables, numbers, an empty precondition, a grammar word or a refused pattern used as a name, a name
 declared twice, a type cycle, ``- type`` without ``:typing``, ``=`` without
 ``:equality``, any syntax error). The caller then reads the file with the
 ``pddl`` package (``package_reader``), which decides and words every error: the
@@ -123,9 +123,23 @@ def _type_name(token: Expression) -> str:
     return _name(token)
 
 
-def _typed_list(items: list[Expression], read: Callable[[Expression], str]) -> list[tuple[str, str | None]]:
-    """``a b - t c`` as ``[(a, t), (b, t), (c, None)]``; a name twice (in any case) is left to the package."""
-    typed: list[tuple[str, str | None]] = []
+def _either(token: Expression) -> tuple[str, ...]:
+    """The types of ``(either t1 t2 ...)``: at least one, lowercase keyword, none of them ``object``
+    (the package refuses it in a domain's typed list, ``either`` or not)."""
+    if not isinstance(token, list) or len(token) < 2 or token[0] != "either":
+        raise Unsupported
+    names = tuple(_name(name) for name in token[1:])
+    if any(name.lower() == ROOT_TYPE for name in names):
+        raise Unsupported
+    return names
+
+
+def _typed_list(
+    items: list[Expression], read: Callable[[Expression], str], either: bool = False
+) -> list[tuple[str, tuple[str, ...] | None]]:
+    """``a b - t c`` as ``[(a, (t,)), (b, (t,)), (c, None)]``, and with ``either`` (a domain's variables)
+    ``a - (either t u)`` as ``[(a, (t, u))]``; a name twice (in any case) is left to the package."""
+    typed: list[tuple[str, tuple[str, ...] | None]] = []
     pending: list[str] = []
     index = 0
     while index < len(items):
@@ -133,8 +147,9 @@ def _typed_list(items: list[Expression], read: Callable[[Expression], str]) -> l
         if item == "-":
             if not pending or index + 1 >= len(items):
                 raise Unsupported
-            type_name = _type_name(items[index + 1])
-            typed.extend((name, type_name) for name in pending)
+            token = items[index + 1]
+            types = _either(token) if either and isinstance(token, list) else (_type_name(token),)
+            typed.extend((name, types) for name in pending)
             pending = []
             index += 2
         else:
@@ -146,8 +161,8 @@ def _typed_list(items: list[Expression], read: Callable[[Expression], str]) -> l
     return typed
 
 
-def _tags(type_name: str | None) -> frozenset[str]:
-    return frozenset({type_name or ROOT_TYPE})
+def _tags(types: tuple[str, ...] | None) -> frozenset[str]:
+    return frozenset(types or (ROOT_TYPE,))
 
 
 def _keyword_section(expression: Expression) -> tuple[str, list[Expression]]:
@@ -187,17 +202,18 @@ class _DomainReader:
         self.parameters: dict[str, str] = {}
         """The current action's parameters, by lowercase name, as declared."""
 
-    def typed(self, items: list[Expression],
-              read: Callable[[Expression], str]) -> list[tuple[str, str | None]]:
-        typed = _typed_list(items, read)
-        if ":typing" not in self.requirements and any(type_name is not None for _, type_name in typed):
+    def typed(self, items: list[Expression], read: Callable[[Expression], str],
+              either: bool = False) -> list[tuple[str, tuple[str, ...] | None]]:
+        typed = _typed_list(items, read, either)
+        if ":typing" not in self.requirements and any(types is not None for _, types in typed):
             raise Unsupported  # the package requires :typing for a typed list
         return typed
 
     def read_types(self, items: list[Expression]) -> None:
         if ":typing" not in self.requirements:
             raise Unsupported
-        for name, parent in self.typed(items, _name):
+        for name, types in self.typed(items, _name):
+            parent = None if types is None else types[0]
             self.types[name] = None if parent is None or parent.lower() == ROOT_TYPE else parent
         lowered = {name.lower(): (parent.lower() if parent else None) for name, parent in self.types.items()}
         self.known_types = set(lowered) | {parent for parent in lowered.values() if parent}
@@ -210,12 +226,10 @@ class _DomainReader:
                 seen.add(current)
                 current = lowered.get(current)
 
-    def check_type_known(self, type_name: str | None) -> None:
-        """A type the package knows: declared, or a declared type's parent. (It refuses ``- object``
+    def check_type_known(self, types: tuple[str, ...] | None) -> None:
+        """Types the package knows: declared, or a declared type's parent. (It refuses ``- object``
         in a domain: its types drop ``object`` as a parent.)"""
-        if type_name is None:
-            return
-        if type_name.lower() not in self.known_types:
+        if any(type_name.lower() not in self.known_types for type_name in types or ()):
             raise Unsupported
 
     def read_predicates(self, items: list[Expression]) -> None:
@@ -229,9 +243,9 @@ class _DomainReader:
             if name.lower() in declared:
                 raise Unsupported
             declared.add(name.lower())
-            parameters = self.typed(item[1:], _variable)
-            for _, type_name in parameters:
-                self.check_type_known(type_name)
+            parameters = self.typed(item[1:], _variable, either=True)
+            for _, types in parameters:
+                self.check_type_known(types)
             self.predicates[name] = len(parameters)
 
     def term(self, token: Expression) -> str:
@@ -294,9 +308,9 @@ class _DomainReader:
         if len(items) < 3 or items[1] != ":parameters" or not isinstance(items[2], list):
             raise Unsupported
         name = _name(items[0])
-        parameters = self.typed(items[2], _variable)
-        for _, type_name in parameters:
-            self.check_type_known(type_name)
+        parameters = self.typed(items[2], _variable, either=True)
+        for _, types in parameters:
+            self.check_type_known(types)
         self.parameters = {variable.lower(): variable for variable, _ in parameters}
         precondition: list[SyntaxLiteral] = []
         effect: list[SyntaxLiteral] = []
@@ -310,7 +324,7 @@ class _DomainReader:
             rest = rest[2:]
         if rest:
             raise Unsupported
-        return ActionSyntax(name, tuple((variable, _tags(type_name)) for variable, type_name in parameters),
+        return ActionSyntax(name, tuple((variable, _tags(types)) for variable, types in parameters),
                             tuple(precondition), tuple(effect))
 
 
@@ -336,9 +350,9 @@ def _domain(expression: list[Expression]) -> DomainSyntax:
             reader.read_types(items)
         elif keyword == ":constants":
             constants = reader.typed(items, _name)
-            for _, type_name in constants:
-                reader.check_type_known(type_name)
-            reader.constants = tuple((constant, _tags(type_name)) for constant, type_name in constants)
+            for _, types in constants:
+                reader.check_type_known(types)
+            reader.constants = tuple((constant, _tags(types)) for constant, types in constants)
             reader.constant_names = {constant.lower(): constant for constant, _ in constants}
         else:
             reader.read_predicates(items)
@@ -360,7 +374,7 @@ def _problem(expression: list[Expression]) -> ProblemSyntax:
     if keyword == ":requirements":
         _requirements(items)
         sections = sections[1:]
-    objects: list[tuple[str, str | None]] = []
+    objects: list[tuple[str, tuple[str, ...] | None]] = []
     if sections:
         keyword, items = _keyword_section(sections[0])
         if keyword == ":objects":
