@@ -7,9 +7,10 @@ plan on, written as the ``pddl`` grammar asks (typing, constants, negative
 preconditions, equality, conjunctions of literals, sections in the grammar's
 order, lowercase keywords), and answers ``None`` for anything else or anything
 the package might object to (other requirements, ``either`` outside a domain's
-variables, numbers, an empty precondition, a grammar word or a refused pattern used as a name, a name
-declared twice, a type cycle, ``- type`` without ``:typing``, ``=`` without
-``:equality``, any syntax error). The caller then reads the file with the
+variables, numbers, an empty precondition, a grammar word or a refused pattern used
+as a name, a name declared twice, a type cycle, ``- type`` without ``:typing``, ``=``
+without ``:equality``, any syntax error: ``pddl_text`` reads the tokens, names and
+typed lists). The caller then reads the file with the
 ``pddl`` package (``package_reader``), which decides and words every error: the
 package stays the judge of what a file means, and
 ``tests/planning/test_strips_text_reader.py`` holds this reader to its reading.
@@ -19,6 +20,17 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from kitchen_tamp.planning.reading.pddl_text import (
+    Expression,
+    Unsupported,
+    read_header,
+    read_name,
+    read_section,
+    read_typed_list,
+    read_variable,
+    single_expression,
+    type_tags,
+)
 from kitchen_tamp.planning.reading.syntax import (
     EQUALITY,
     ROOT_TYPE,
@@ -29,31 +41,17 @@ from kitchen_tamp.planning.reading.syntax import (
     TypedName,
 )
 
-Expression = str | list["Expression"]
-"""A token, or a parenthesised list of expressions."""
-
 SUPPORTED_REQUIREMENTS = frozenset({":strips", ":typing", ":negative-preconditions", ":equality"})
 """Requirements this reader takes; a file declaring any other is left to the ``pddl`` package."""
-
-GRAMMAR_WORDS = frozenset({
-    "define", "domain", "problem", "either", "object", "and", "or", "not", "imply", "forall", "exists",
-    "when", "oneof", "assign", "scale-up", "scale-down", "increase", "decrease", "maximize", "minimize",
-    "total-cost", "number",
-})
-"""The words of the ``pddl`` package's grammar; a file using one as a name is left to the package."""
 
 DOMAIN_SECTIONS = (":requirements", ":types", ":constants", ":predicates")
 """The domain's optional sections, in the order the grammar requires, before the actions."""
 
 
-class Unsupported(Exception):
-    """Raised inside the reader when a file is not one it reads; the public functions answer None."""
-
-
 def read_domain_text(text: str) -> DomainSyntax | None:
     """The domain in ``text``, or None when the ``pddl`` package must read it."""
     try:
-        return _domain(_single_expression(text))
+        return _domain(single_expression(text))
     except Unsupported:
         return None
 
@@ -61,122 +59,9 @@ def read_domain_text(text: str) -> DomainSyntax | None:
 def read_problem_text(text: str) -> ProblemSyntax | None:
     """The problem in ``text``, or None when the ``pddl`` package must read it."""
     try:
-        return _problem(_single_expression(text))
+        return _problem(single_expression(text))
     except Unsupported:
         return None
-
-
-def _single_expression(text: str) -> list[Expression]:
-    """The one parenthesised expression ``text`` holds, as nested lists of tokens."""
-    if not text.isascii():
-        raise Unsupported
-    lines = text.split("\n")
-    for index, line in enumerate(lines):
-        cut = line.find(";")
-        if cut >= 0:
-            if cut > 0 and line[cut - 1] not in " \t\r\f\v()":
-                raise Unsupported  # the package's lexer would read the ';' as part of a name
-            lines[index] = line[:cut]
-    tokens = " ".join(lines).replace("(", " ( ").replace(")", " ) ").split()
-    stack: list[list[Expression]] = [[]]
-    for token in tokens:
-        if token == "(":
-            opened: list[Expression] = []
-            stack[-1].append(opened)
-            stack.append(opened)
-        elif token == ")":
-            if len(stack) == 1:
-                raise Unsupported
-            stack.pop()
-        else:
-            stack[-1].append(token)
-    top = stack[0]
-    if len(stack) != 1 or len(top) != 1 or not isinstance(top[0], list):
-        raise Unsupported
-    return top[0]
-
-
-def _is_name(token: Expression) -> bool:
-    """Whether ``token`` is a name the package accepts: a letter, then letters, digits, '-' or '_'."""
-    return (isinstance(token, str) and token[:1].isalpha()
-            and token.replace("-", "").replace("_", "").isalnum()
-            and token.lower() not in GRAMMAR_WORDS)
-
-
-def _name(token: Expression) -> str:
-    if not _is_name(token):
-        raise Unsupported
-    assert isinstance(token, str)
-    return token
-
-
-def _variable(token: Expression) -> str:
-    """A variable's name, without its ``?``."""
-    if not isinstance(token, str) or token[0] != "?" or not _is_name(token[1:]):
-        raise Unsupported
-    return token[1:]
-
-
-def _type_name(token: Expression) -> str:
-    if token == ROOT_TYPE:
-        return ROOT_TYPE
-    return _name(token)
-
-
-def _either(token: Expression) -> tuple[str, ...]:
-    """The types of ``(either t1 t2 ...)``: at least one, lowercase keyword, none of them ``object``
-    (the package refuses it in a domain's typed list, ``either`` or not)."""
-    if not isinstance(token, list) or len(token) < 2 or token[0] != "either":
-        raise Unsupported
-    names = tuple(_name(name) for name in token[1:])
-    if any(name.lower() == ROOT_TYPE for name in names):
-        raise Unsupported
-    return names
-
-
-def _typed_list(
-    items: list[Expression], read: Callable[[Expression], str], either: bool = False
-) -> list[tuple[str, tuple[str, ...] | None]]:
-    """``a b - t c`` as ``[(a, (t,)), (b, (t,)), (c, None)]``, and with ``either`` (a domain's variables)
-    ``a - (either t u)`` as ``[(a, (t, u))]``; a name twice (in any case) is left to the package."""
-    typed: list[tuple[str, tuple[str, ...] | None]] = []
-    pending: list[str] = []
-    index = 0
-    while index < len(items):
-        item = items[index]
-        if item == "-":
-            if not pending or index + 1 >= len(items):
-                raise Unsupported
-            token = items[index + 1]
-            types = _either(token) if either and isinstance(token, list) else (_type_name(token),)
-            typed.extend((name, types) for name in pending)
-            pending = []
-            index += 2
-        else:
-            pending.append(read(item))
-            index += 1
-    typed.extend((name, None) for name in pending)
-    if len({name.lower() for name, _ in typed}) != len(typed):
-        raise Unsupported
-    return typed
-
-
-def _tags(types: tuple[str, ...] | None) -> frozenset[str]:
-    return frozenset(types or (ROOT_TYPE,))
-
-
-def _keyword_section(expression: Expression) -> tuple[str, list[Expression]]:
-    """A section ``(:keyword ...)`` as its keyword and the rest."""
-    if not isinstance(expression, list) or not expression or not isinstance(expression[0], str):
-        raise Unsupported
-    return expression[0], expression[1:]
-
-
-def _header(expression: Expression, word: str) -> str:
-    """The name in ``(domain NAME)`` or ``(problem NAME)``."""
-    if not isinstance(expression, list) or len(expression) != 2 or expression[0] != word:
-        raise Unsupported
-    return _name(expression[1])
 
 
 def _requirements(items: list[Expression]) -> frozenset[str]:
@@ -204,7 +89,7 @@ class _DomainReader:
 
     def typed(self, items: list[Expression], read: Callable[[Expression], str],
               either: bool = False) -> list[tuple[str, tuple[str, ...] | None]]:
-        typed = _typed_list(items, read, either)
+        typed = read_typed_list(items, read, either)
         if ":typing" not in self.requirements and any(types is not None for _, types in typed):
             raise Unsupported  # the package requires :typing for a typed list
         return typed
@@ -212,7 +97,7 @@ class _DomainReader:
     def read_types(self, items: list[Expression]) -> None:
         if ":typing" not in self.requirements:
             raise Unsupported
-        for name, types in self.typed(items, _name):
+        for name, types in self.typed(items, read_name):
             parent = None if types is None else types[0]
             self.types[name] = None if parent is None or parent.lower() == ROOT_TYPE else parent
         lowered = {name.lower(): (parent.lower() if parent else None) for name, parent in self.types.items()}
@@ -239,11 +124,11 @@ class _DomainReader:
         for item in items:
             if not isinstance(item, list) or not item:
                 raise Unsupported
-            name = _name(item[0])
+            name = read_name(item[0])
             if name.lower() in declared:
                 raise Unsupported
             declared.add(name.lower())
-            parameters = self.typed(item[1:], _variable, either=True)
+            parameters = self.typed(item[1:], read_variable, either=True)
             for _, types in parameters:
                 self.check_type_known(types)
             self.predicates[name] = len(parameters)
@@ -251,9 +136,9 @@ class _DomainReader:
     def term(self, token: Expression) -> str:
         """A constant or variable (``?`` included) spelled as declared, as the package spells them."""
         if isinstance(token, str) and token.startswith("?"):
-            variable = _variable(token)
+            variable = read_variable(token)
             return "?" + self.parameters.get(variable.lower(), variable)
-        name = _name(token)
+        name = read_name(token)
         if not self.check_constants:
             return name
         declared = self.constant_names.get(name.lower())
@@ -270,7 +155,7 @@ class _DomainReader:
             if ":equality" not in self.requirements or len(expression) != 3:
                 raise Unsupported
         else:
-            head = _name(head)
+            head = read_name(head)
         assert isinstance(head, str)
         out.append((positive, head, tuple(self.term(term) for term in expression[1:])))
 
@@ -307,8 +192,8 @@ class _DomainReader:
     def action(self, items: list[Expression]) -> ActionSyntax:
         if len(items) < 3 or items[1] != ":parameters" or not isinstance(items[2], list):
             raise Unsupported
-        name = _name(items[0])
-        parameters = self.typed(items[2], _variable, either=True)
+        name = read_name(items[0])
+        parameters = self.typed(items[2], read_variable, either=True)
         for _, types in parameters:
             self.check_type_known(types)
         self.parameters = {variable.lower(): variable for variable, _ in parameters}
@@ -324,19 +209,19 @@ class _DomainReader:
             rest = rest[2:]
         if rest:
             raise Unsupported
-        return ActionSyntax(name, tuple((variable, _tags(types)) for variable, types in parameters),
+        return ActionSyntax(name, tuple((variable, type_tags(types)) for variable, types in parameters),
                             tuple(precondition), tuple(effect))
 
 
 def _domain(expression: list[Expression]) -> DomainSyntax:
     if len(expression) < 2 or expression[0] != "define":
         raise Unsupported
-    name = _header(expression[1], "domain")
+    name = read_header(expression[1], "domain")
     reader = _DomainReader(check_constants=True)
     actions: list[ActionSyntax] = []
     next_section = 0
     for section in expression[2:]:
-        keyword, items = _keyword_section(section)
+        keyword, items = read_section(section)
         if keyword == ":action":
             actions.append(reader.action(items))
             next_section = len(DOMAIN_SECTIONS)
@@ -349,10 +234,10 @@ def _domain(expression: list[Expression]) -> DomainSyntax:
         elif keyword == ":types":
             reader.read_types(items)
         elif keyword == ":constants":
-            constants = reader.typed(items, _name)
+            constants = reader.typed(items, read_name)
             for _, types in constants:
                 reader.check_type_known(types)
-            reader.constants = tuple((constant, _tags(types)) for constant, types in constants)
+            reader.constants = tuple((constant, type_tags(types)) for constant, types in constants)
             reader.constant_names = {constant.lower(): constant for constant, _ in constants}
         else:
             reader.read_predicates(items)
@@ -364,37 +249,37 @@ def _domain(expression: list[Expression]) -> DomainSyntax:
 def _problem(expression: list[Expression]) -> ProblemSyntax:
     if len(expression) < 5 or expression[0] != "define":
         raise Unsupported
-    name = _header(expression[1], "problem")
-    keyword, items = _keyword_section(expression[2])
+    name = read_header(expression[1], "problem")
+    keyword, items = read_section(expression[2])
     if keyword != ":domain" or len(items) != 1:
         raise Unsupported
-    domain_name = _name(items[0])
+    domain_name = read_name(items[0])
     sections = expression[3:]
-    keyword, items = _keyword_section(sections[0])
+    keyword, items = read_section(sections[0])
     if keyword == ":requirements":
         _requirements(items)
         sections = sections[1:]
     objects: list[tuple[str, tuple[str, ...] | None]] = []
     if sections:
-        keyword, items = _keyword_section(sections[0])
+        keyword, items = read_section(sections[0])
         if keyword == ":objects":
-            objects = _typed_list(items, _name)
+            objects = read_typed_list(items, read_name)
             sections = sections[1:]
     if len(sections) != 2:
         raise Unsupported  # :init and :goal, and nothing after them (a :metric is left to the package)
     init = _init(sections[0], {name.lower(): name for name, _ in objects})
-    keyword, items = _keyword_section(sections[1])
+    keyword, items = read_section(sections[1])
     if keyword != ":goal" or len(items) != 1:
         raise Unsupported
     goal: list[SyntaxLiteral] = []
     _DomainReader(check_constants=False).condition(items[0], goal)  # no :equality, so an '=' is refused
-    return ProblemSyntax(name, domain_name, tuple((o, _tags(t)) for o, t in objects), init, tuple(goal))
+    return ProblemSyntax(name, domain_name, tuple((o, type_tags(t)) for o, t in objects), init, tuple(goal))
 
 
 def _init(section: Expression, objects: dict[str, str]) -> tuple[tuple[str, tuple[str, ...]], ...]:
     """The positive facts of ``(:init ...)``; each fact names objects only, spelled as ``objects``
     (by lowercase name) declares them, as the package spells them."""
-    keyword, items = _keyword_section(section)
+    keyword, items = read_section(section)
     if keyword != ":init":
         raise Unsupported
     facts: list[tuple[str, tuple[str, ...]]] = []
@@ -406,8 +291,8 @@ def _init(section: Expression, objects: dict[str, str]) -> tuple[tuple[str, tupl
             positive, item = False, item[1]
         if not isinstance(item, list) or not item:
             raise Unsupported
-        arguments = (_name(argument) for argument in item[1:])
-        fact = (_name(item[0]), tuple(objects.get(argument.lower(), argument) for argument in arguments))
+        arguments = (read_name(argument) for argument in item[1:])
+        fact = (read_name(item[0]), tuple(objects.get(argument.lower(), argument) for argument in arguments))
         if positive:
             facts.append(fact)
     return tuple(facts)

@@ -51,7 +51,7 @@ MAX_ENTRY_BYTES = 16 * 1024 * 1024
 
 TASK_SOURCES = ("errors.py", "grounding.py", "loading.py", "schemas.py", "task.py",
                 "reading/package_reader.py", "reading/source.py", "reading/syntax.py",
-                "reading/strips_text_reader.py", "reading/task_cache.py")
+                "reading/pddl_text.py", "reading/strips_text_reader.py", "reading/task_cache.py")
 """Our modules whose code decides what a loaded task is; editing one makes every entry stale."""
 
 ENTRY_SUFFIX = ".task"
