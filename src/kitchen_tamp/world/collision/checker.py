@@ -235,7 +235,8 @@ class PyBulletCollisionChecker:
             pair_bounds[:] = horizon + checked.allowances
         candidates = checked.candidates(horizon, static_bounds)
         for k, gap in candidates:
-            if gap > best + BOUNDS_SLACK:
+            # A pair's value is at least its gap less the largest kept clearance (0 without one).
+            if gap - checked.kept_horizon > best + BOUNDS_SLACK:
                 if pair_bounds is not None:
                     pair_bounds[k] = gap + checked.allowances[k]
                     for rest, rest_gap in candidates:
@@ -337,8 +338,9 @@ class PyBulletCollisionChecker:
             weights = self._reach_weights
             if weights is None:
                 return LowestClearance.of(np.array([measure(i)[0] for i in range(len(batch))]))
-            intended, until = checked.allowances > 0.0, until_collision
-            return lowest_clearance(batch, measure, measure_pairs, weights, intended, ceiling, until)
+            # An intended contact or a kept clearance counts only when negative (`_clearance_here`).
+            only_negative, until = checked.allowances != 0.0, until_collision
+            return lowest_clearance(batch, measure, measure_pairs, weights, only_negative, ceiling, until)
 
     @functools.cached_property
     def _reach_weights(self) -> FloatArray | None:

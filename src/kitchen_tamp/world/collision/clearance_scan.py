@@ -14,8 +14,9 @@ of the pair's two sides that joint moves alone (a joint that moves both moves th
 `lowest_clearance` measures every ``PREPASS_STRIDE``-th state and the last fully, which gives a
 threshold ``T`` (the lowest clearance met so far, or the ``ceiling`` the caller already has, never
 below 0), then walks the states between in order and, at each, measures only the pairs whose bound
-from the states measured on either side does not prove them above ``T`` (or, for an intended
-contact, which counts only when deeper than allowed, above 0). What it does not measure is proved
+from the states measured on either side does not prove them above ``T`` (or, for a pair that
+counts only when negative, an intended contact deeper than allowed or a kept clearance broken,
+above 0). What it does not measure is proved
 above ``T``: a state can be neither the lowest (nor tie with it) nor a collision through it. So the
 lowest value, the first state reaching it and the first colliding state are exactly those of
 measuring every pair at every state, whenever the lowest is below the ceiling
@@ -151,13 +152,13 @@ def lowest_clearance(
     measure: Measure,
     measure_pairs: MeasurePairs,
     weights: FloatArray,
-    intended: BoolArray,
+    only_negative: BoolArray,
     ceiling: float,
     until_collision: bool = False,
 ) -> LowestClearance:
     """`LowestClearance` of the states ``qs``: every state ``PREPASS_STRIDE`` apart (and the last)
     by ``measure``, then at the states between only the pairs whose bounds (pairs x joints
-    ``weights``; ``intended`` marks the pairs counted only when negative) do not prove them above
+    ``weights``; ``only_negative`` marks the pairs counted only when negative) do not prove them above
     the threshold, by ``measure_pairs`` (see the module's docstring). Exact whenever the lowest
     clearance is below ``ceiling`` (pass the lowest the caller has met, or infinity).
 
@@ -185,7 +186,7 @@ def lowest_clearance(
         while start < after:
             low = np.maximum(known - np.abs(qs[start:after] - qs[known_at]) @ weights.T,
                              from_after[start - before - 1 :])
-            below = low <= np.where(intended, 0.0, threshold) + BOUND_SLACK
+            below = low <= np.where(only_negative, 0.0, threshold) + BOUND_SLACK
             rows = np.flatnonzero(below.any(axis=1))
             if len(rows) == 0:
                 break  # every pair proved above the threshold at every state left
@@ -195,7 +196,7 @@ def lowest_clearance(
             known = low[row].copy()
             known[near] = found
             known_at, start = i, i + 1
-            counted = found[~intended[near] | (found < 0.0)]
+            counted = found[~only_negative[near] | (found < 0.0)]
             values[i] = float(counted.min()) if len(counted) else np.inf
             threshold = max(0.0, min(threshold, values[i]))
             measured += 1
