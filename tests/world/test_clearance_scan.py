@@ -111,3 +111,45 @@ def test_the_scan_finds_what_measuring_every_state_finds(
         free += expected.first_collision is None
     assert colliding and free  # both kinds of run were met
     assert skipped > 0  # and the scan measured fewer states than there are
+
+
+def test_the_scan_finds_what_measuring_every_state_finds_while_the_drawer_slides(
+    panda_scene: tuple[Scene, Robot],
+) -> None:
+    """The hand pulling the drawer: its slide is one more joint of the scan (a box rides inside)."""
+    scene, robot = panda_scene
+    kitchen, box = scene.body("kitchen"), scene.body("sugar")
+    box.reset_base_pose(kitchen.link_pose("drawer_floor").translated((0.0, 0.0, 0.1)))
+    scene.attach(box, kitchen, "drawer_floor")
+    checker = make_collision_checker(scene, robot)
+    joint = kitchen.joint("drawer_joint")
+    # Runs of the arm moving, and runs of the arm still where the drawer's travel changes its
+    # clearance by centimetres (the slide alone decides what the scan may skip there).
+    rng = np.random.default_rng(5)
+    still = []
+    while len(still) < 4:
+        q = rng.uniform(robot.lower, robot.upper)
+        ends = [checker.min_clearance_along(q[np.newaxis], kitchen, ["drawer_joint"], [[v]])[0]
+                for v in (joint.lower, joint.upper)]
+        if abs(ends[1] - ends[0]) > 0.03 and min(ends) < 0.3:
+            still.append(np.repeat(q[np.newaxis], 150, axis=0))
+    colliding = free = skipped = 0
+    travel = joint.upper - joint.lower
+    for k, qs in enumerate(_segments(robot, 8, 21) + still):
+        # out and back, so that a still arm's closest state lies between the states measured first
+        openings = joint.lower + travel * np.sin(np.linspace(0.0, np.pi, len(qs)))[:: 1 if k % 2 else -1]
+        along = (kitchen, ["drawer_joint"], openings)
+        expected = LowestClearance.of(checker.min_clearance_along(qs, *along))
+        for ceiling in (np.inf, 0.0, expected.value + 0.003):
+            found = checker.lowest_clearance(qs, ceiling, along=along)
+            assert found.first_collision == expected.first_collision
+            if expected.value < ceiling:
+                assert (found.index, found.value) == (expected.index, expected.value)
+            skipped += len(qs) - found.measured
+        until = checker.lowest_clearance(qs, 0.0, until_collision=True, along=along)
+        valid = checker.is_valid_along(qs, *along)
+        assert until.first_collision == expected.first_collision
+        assert until.first_collision == (None if valid.all() else int(np.argmin(valid)))
+        colliding += expected.first_collision is not None
+        free += expected.first_collision is None
+    assert colliding and free and skipped > 0

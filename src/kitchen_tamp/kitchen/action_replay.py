@@ -53,7 +53,6 @@ from kitchen_tamp.kitchen.robot_range import clipped_to_range, range_problem
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples, interpolate_segment
 from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
-from kitchen_tamp.world.collision.clearance_scan import LowestClearance
 
 HANDLE_HOLD_ANGLE: Final = 0.02
 """Largest turn (rad) of the hand while it holds a handle: about the contact bound over the
@@ -284,22 +283,15 @@ class _Replayer:
         if run.drawer is not None:
             joint = self.kitchen.map.openables[run.drawer].joint
             along = (self.kitchen.kitchen, [joint], openings[run.drawer][rows])
-        if self.measure:
-            if along is None:  # measured where the lowest or a collision can be (exact there)
-                found = run.checker.lowest_clearance(qs, max(self.result.min_clearance_m, 0.0))
-            else:
-                found = LowestClearance.of(run.checker.min_clearance_along(qs, *along))
+        if self.measure:  # measured where the lowest or a collision can be (exact there)
+            found = run.checker.lowest_clearance(qs, max(self.result.min_clearance_m, 0.0), along=along)
             if found.value < self.result.min_clearance_m:
                 self.result.min_clearance_m = found.value
                 self.result.closest_approach = self.where
             first = found.first_collision
             depth = f" ({found.value * 1000:.1f} mm deep)"
-        elif along is None:  # the same measure as above, up to the first collision
-            first = run.checker.lowest_clearance(qs, 0.0, until_collision=True).first_collision
-            depth = ""
-        else:
-            valid = run.checker.is_valid_along(qs, *along)
-            first = None if valid.all() else int(np.argmin(valid))
+        else:  # the same measure, up to the first collision
+            first = run.checker.lowest_clearance(qs, 0.0, until_collision=True, along=along).first_collision
             depth = ""
         if first is None:
             return True

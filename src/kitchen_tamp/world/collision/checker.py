@@ -47,6 +47,7 @@ from kitchen_tamp.world.collision.clearance_scan import (
     lowest_clearance,
     pair_values,
     reach_weights,
+    sliding_weights,
 )
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
@@ -317,30 +318,40 @@ class PyBulletCollisionChecker:
         return self._clearances(np.atleast_2d(np.asarray(qs, dtype=float)))
 
     def lowest_clearance(
-        self, qs: FloatArray, ceiling: float = float("inf"), until_collision: bool = False
+        self, qs: FloatArray, ceiling: float = float("inf"), until_collision: bool = False,
+        along: Along | None = None,
     ) -> LowestClearance:
-        """The lowest of ``min_clearance(qs)``, its first row and the first negative row, measuring
-        only the rows where they can be (`clearance_scan`); exact whenever the lowest is below
-        ``ceiling``; with ``until_collision`` (and a ``ceiling`` of 0), only the first negative row."""
-        batch, checked, client = np.atleast_2d(np.asarray(qs, dtype=float)), self._checked, self._client
+        """The lowest of ``min_clearance(qs)`` (``min_clearance_along`` with ``along``), its first row
+        and the first negative row, measuring only the rows where they can be (`clearance_scan`);
+        exact whenever the lowest is below ``ceiling``; with ``until_collision`` (and a ``ceiling``
+        of 0), only the first negative row."""
+        batch, client = np.atleast_2d(np.asarray(qs, dtype=float)), self._client
+        checked = self._checked if along is None else self._checked_along
+        if along is not None:  # a row of joint values per configuration
+            along = (along[0], along[1], np.asarray(along[2], dtype=float).reshape(len(batch), -1))
         if len(batch) <= 2:
-            return LowestClearance.of(self._clearances(batch))
-        with self._in_snapshot(only_arm_moves=True):
+            return LowestClearance.of(self._clearances(batch, along))
+        with self._in_snapshot(only_arm_moves=along is None):
 
             def measure(i: int) -> tuple[float, FloatArray]:
-                pair_bounds = np.empty(len(checked.pairs))
-                return self._clearance_here(checked, self._place(batch[i]), pair_bounds), pair_bounds
+                bounds = np.empty(len(checked.pairs))
+                return self._clearance_here(checked, self._place(batch[i], along, i), bounds), bounds
 
             def measure_pairs(i: int, pairs: NDArray[np.intp]) -> FloatArray:
-                self._place(batch[i])
+                self._place(batch[i], along, i)
                 return pair_values(checked, pairs, CLEARANCE_HORIZON, client)
 
-            weights = self._reach_weights
+            weights, rows = self._reach_weights, batch
+            if along is not None:  # the arm's joints, then the slide's
+                arm = reach_weights(checked, self.robot, self._arm, self.carried)
+                slide = sliding_weights(checked, along[0], along[1], self._attachments)
+                weights = None if arm is None or slide is None else np.hstack([arm, slide])
+                rows = np.hstack([batch, along[2]])
             if weights is None:
                 return LowestClearance.of(np.array([measure(i)[0] for i in range(len(batch))]))
             # An intended contact or a kept clearance counts only when negative (`_clearance_here`).
             only_negative, until = checked.allowances != 0.0, until_collision
-            return lowest_clearance(batch, measure, measure_pairs, weights, only_negative, ceiling, until)
+            return lowest_clearance(rows, measure, measure_pairs, weights, only_negative, ceiling, until)
 
     @functools.cached_property
     def _reach_weights(self) -> FloatArray | None:

@@ -129,6 +129,37 @@ def reach_weights(
     return np.where(moved[side_a] != moved[side_b], reach_table[side_a] + reach_table[side_b], 0.0)
 
 
+def sliding_weights(
+    checked: CheckedPairs, body: Body, joint_names: Sequence[str], attachments: Sequence[Attachment]
+) -> FloatArray | None:
+    """Per checked pair and joint of ``body`` (a drawer's slide), how far one metre of that joint
+    alone changes the pair's distance: 1 when it moves one side of the pair (a link beyond it, or a
+    body riding on one) and not the other, else 0; None unless every joint is prismatic (a
+    prismatic joint moves everything beyond it by exactly its travel)."""
+    joints = [body.joint(name) for name in joint_names]
+    if not all(joint.movable and not joint.revolute for joint in joints):
+        return None
+    parent = {j.index: j.parent_index for j in body.joints}
+
+    def beyond(link: int, joint: int) -> bool:
+        while link != BASE_LINK:
+            if link == joint:
+                return True
+            link = parent[link]
+        return False
+
+    riding = {a.child.uid: a for a in attachments}
+
+    def moves(side: Body, link: int, joint: int) -> bool:
+        if side is body:
+            return beyond(link, joint)
+        ride = riding.get(side.uid)
+        return ride is not None and moves(ride.parent, ride.parent.link_index(ride.parent_link), joint)
+
+    return np.array([[float(moves(a, i, joint.index) != moves(b, j, joint.index)) for joint in joints]
+                     for a, i, b, j in checked.pairs]).reshape(len(checked.pairs), len(joints))
+
+
 def pair_values(checked: CheckedPairs, pairs: IntArray, horizon: float, client: int) -> FloatArray:
     """The given pairs' distances plus allowances at the current state (the horizon plus allowance
     for a pair farther than it)."""
