@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from kitchen_tamp.world import PANDA, Pose, Robot, Scene, panda_urdf_path
+from kitchen_tamp.world import PANDA, Body, Pose, Robot, Scene, panda_urdf_path
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
 
@@ -41,3 +41,11 @@ def panda_scene(scene: Scene) -> tuple[Scene, Robot]:
 def down_rotation() -> np.ndarray:
     """Tool z pointing down."""
     return np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]])
+
+
+def sugar_riding_in_drawer(scene: Scene) -> Body:
+    """The kitchen, with the sugar box attached to its drawer's floor, so that it slides with it."""
+    kitchen, box = scene.body("kitchen"), scene.body("sugar")
+    box.reset_base_pose(kitchen.link_pose("drawer_floor").translated((0.0, 0.0, 0.1)))
+    scene.attach(box, kitchen, "drawer_floor")
+    return kitchen

@@ -12,6 +12,7 @@ from kitchen_tamp.world import Body, Robot, Scene, make_collision_checker
 from kitchen_tamp.world.collision.checked_pairs import AllowedContact, KeptClearance, checked_pairs_of
 from kitchen_tamp.world.collision.checker import CLEARANCE_HORIZON
 from kitchen_tamp.world.collision.clearance_scan import LowestClearance, reach_weights
+from tests.world.conftest import sugar_riding_in_drawer
 
 
 def _hold_sugar(scene: Scene, robot: Robot) -> Body:
@@ -118,9 +119,7 @@ def test_the_scan_finds_what_measuring_every_state_finds_while_the_drawer_slides
 ) -> None:
     """The hand pulling the drawer: its slide is one more joint of the scan (a box rides inside)."""
     scene, robot = panda_scene
-    kitchen, box = scene.body("kitchen"), scene.body("sugar")
-    box.reset_base_pose(kitchen.link_pose("drawer_floor").translated((0.0, 0.0, 0.1)))
-    scene.attach(box, kitchen, "drawer_floor")
+    kitchen = sugar_riding_in_drawer(scene)
     checker = make_collision_checker(scene, robot)
     joint = kitchen.joint("drawer_joint")
     # Runs of the arm moving, and runs of the arm still where the drawer's travel changes its

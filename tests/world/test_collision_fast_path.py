@@ -21,6 +21,7 @@ from kitchen_tamp.world import (
     SceneState,
     make_collision_checker,
 )
+from tests.world.conftest import sugar_riding_in_drawer
 
 CONFIGURATIONS = 250
 
@@ -186,9 +187,7 @@ def test_checker_keeps_its_snapshot_when_the_scene_changes(panda_scene: tuple[Sc
 def test_along_agrees_with_reference(panda_scene: tuple[Scene, Robot]) -> None:
     """The drawer slides with each configuration; a box attached to the drawer rides along."""
     scene, robot = panda_scene
-    kitchen, box = scene.body("kitchen"), scene.body("sugar")
-    box.reset_base_pose(kitchen.link_pose("drawer_floor").translated((0.0, 0.0, 0.1)))
-    scene.attach(box, kitchen, "drawer_floor")
+    kitchen = sugar_riding_in_drawer(scene)
     checker = make_collision_checker(scene, robot)
     joint = kitchen.joint("drawer_joint")
     qs = _random_configurations(robot, 60, 4)
