@@ -188,7 +188,9 @@ def same_reports(base: Checkout, ours: Checkout, args: argparse.Namespace, scrat
             for seed in args.seeds:
                 reports = []
                 for checkout in (base, ours):
-                    out = scratch / f"{checkout.label}-{Path(problem).stem}-{mode}-{seed}"
+                    # the kitchen's folder too: the benchmark kitchens' problems share file names
+                    name = "-".join(filter(None, (Path(problem).parent.name, Path(problem).stem)))
+                    out = scratch / f"{checkout.label}-{name}-{mode}-{seed}"
                     command = [str(checkout.python), "final_project.py", mode, "--problem", problem,
                                "--seed", str(seed), "--out", str(out), "--no-video"]
                     env = _environment(scratch / f"cache-{checkout.label}", checkout.root / "src")

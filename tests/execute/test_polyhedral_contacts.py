@@ -7,6 +7,11 @@ of the cabbage it had carried to the hob: once the fingers opened, that contact 
 shut with their whole motor force, and the cabbage left with the hand. Under polyhedral
 (separating-axis) contacts, the default, the same file verifies.
 
+Since the links welded to the world stopped colliding (`PhysicsWorld`'s anchored pairs,
+2026-12-04), the solver's order changed and GJK/EPA no longer meets that edge on this plan
+(nor on any of 160 benchmark runs re-judged under both models), so only the polyhedral
+verdict is held here; `benchmarks/physics_contacts.py` compares the two models on sweeps.
+
 Each execution runs in a fresh process (`benchmarks/physics_contacts.py --one`): PyBullet
 keeps the meshes it has read for the rest of the process, with whatever contact features
 the first load gave them, so an execution after another one with other settings would
@@ -44,12 +49,6 @@ def _execute(model: str) -> dict[str, object]:
 def test_the_fingers_let_go_of_a_box_they_release_under_polyhedral_contacts() -> None:
     polyhedral = _execute("polyhedral")
     assert polyhedral["kinematic"] and polyhedral["physics"], polyhedral["problems"]
-
-    gjk = _execute("gjk")
-    assert gjk["kinematic"] and not gjk["physics"]
-    problems = gjk["problems"]
-    assert isinstance(problems, list)
-    assert problems[0].startswith("after (place cabbage hob): the scene shows ['(holding cabbage)']")
 
 
 def test_polyhedral_contacts_refuse_a_scene_loaded_without_them() -> None:
