@@ -432,6 +432,11 @@ def main() -> int:
                         help="with --peers lama-first: CPU ms per evaluation, Python and compiled")
     parser.add_argument("--split", action="store_true",
                         help="with --peers lama-first: our fresh process's CPU seconds by phase")
+    parser.add_argument("--further", type=Path, metavar="BENCHMARKS",
+                        help="with --peers lama-first: the IPC set's domains' other problems from "
+                             "BENCHMARKS, a folder laid out as pyperplan's benchmarks/ (DOMAIN/taskNN.pddl)")
+    parser.add_argument("--tasks", type=int, nargs="+", default=[10, 15, 20, 25, 30],
+                        help="with --further: the task numbers to take (default 10 15 20 25 30)")
     parser.add_argument("--pyperplan-worker", nargs=3, metavar=("DOMAIN", "PROBLEM", "SEARCH"),
                         help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -441,7 +446,8 @@ def main() -> int:
     if args.peers == "lama-first":
         from symbolic_lama import lama_first
 
-        return lama_first(args.only, args.rounds or 1, args.timeout, args.evaluations, args.split)
+        further = None if args.further is None else (args.further, args.tasks)
+        return lama_first(args.only, args.rounds or 1, args.timeout, args.evaluations, args.split, further)
     logging.getLogger().setLevel(logging.WARNING)
     fd = None if args.no_fd else fast_downward_script()
     selected = [p for p in problems(args.quick) if (not args.only or p.name in args.only.split(","))

@@ -4,6 +4,7 @@
     python benchmarks/symbolic.py --peers lama-first --rounds 3 --only depot-task03,sokoban-task23
     python benchmarks/symbolic.py --peers lama-first --evaluations  # CPU ms per evaluation
     python benchmarks/symbolic.py --peers lama-first --split  # our whole process's time by phase
+    python benchmarks/symbolic.py --peers lama-first --further <pyperplan>/benchmarks --tasks 10 20 30
 
 Each row runs ``pddl/activity_planning.py PROBLEM --domain DOMAIN --planner gbfs`` on new files (the task
 cache emptied first) and ``fast-downward.py --alias lama-first DOMAIN PROBLEM`` as fresh processes,
@@ -18,6 +19,10 @@ slower than lama-first, geometric mean at most 0.5x, every problem solved. ``ben
 actions, h_LM and its preferred operators) in Python and through the compiled kernels, in CPU milliseconds
 on the states of seeded random walks (the initial state and up to 200 more), beside each row's
 ``work_per_evaluation``.
+
+``--further BENCHMARKS`` runs the same table on the IPC set's domains' other problems (``--tasks``, by
+number) from a folder laid out as pyperplan's ``benchmarks/`` (a clone of github.com/aibasel/pyperplan;
+not on PyPI, so not fetched here): the bar holds for "any further IPC problems of the same domains" too.
 
 ``--split`` runs our planner once per row in a fresh process (new files) and splits its CPU seconds into
 the interpreter's start, our imports, reading and grounding, and the search (with numpy and the compiled
@@ -39,7 +44,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from pddl_generators import IPC_DIR
-from symbolic import IPC_PROBLEMS
+from symbolic import IPC_DOMAINS, IPC_PROBLEMS
 from symbolic_process import (
     _command,
     _environment,
@@ -97,6 +102,23 @@ def _rows(only: set[str] | None) -> list[tuple[str, Path, Path]]:
     return rows
 
 
+def further_rows(benchmarks: Path, numbers: list[int]) -> list[tuple[str, Path, Path]]:
+    """Problems of the IPC set's domains that the set does not hold, numbered ``numbers``, from
+    ``benchmarks`` laid out as pyperplan's collection (``DOMAIN/taskNN.pddl`` beside ``domain.pddl``,
+    or openstacks' own ``domainNN.pddl``): the bar's "any further IPC problems of the same domains"."""
+    held = {row for row, _, _ in _rows(None)}
+    rows = []
+    for domain_name in sorted(IPC_DOMAINS):
+        folder = benchmarks / domain_name
+        for number in numbers:
+            row, problem = f"{domain_name}-task{number:02d}", folder / f"task{number:02d}.pddl"
+            if row in held or not problem.exists():
+                continue
+            own_domain = folder / f"domain{number:02d}.pddl"
+            rows.append((row, own_domain if own_domain.exists() else folder / "domain.pddl", problem))
+    return rows
+
+
 def evaluation_costs(domain: Path, problem: Path) -> tuple[str, float]:
     """The row's work per evaluation and CPU ms per evaluation in Python and through the kernels, and the
     CPU seconds of the first compiled evaluation (in the first row: loading numba and the kernels; numpy
@@ -147,13 +169,17 @@ def _cell(value: float | int | None) -> str:
     return "-" if value is None else f"{value:.3f}" if isinstance(value, float) else str(value)
 
 
-def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: bool, split: bool) -> int:
-    """``symbolic.py --peers lama-first``: the table against lama-first, ``--evaluations`` or ``--split``."""
+def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: bool, split: bool,
+               further: tuple[Path, list[int]] | None = None) -> int:
+    """``symbolic.py --peers lama-first``: the table against lama-first, ``--evaluations`` or ``--split``;
+    with ``further`` (a benchmarks folder and task numbers), on `further_rows` instead of the IPC set."""
     only = set(only_rows.split(",")) if only_rows else None
+    selected = _rows(only) if further is None else [
+        row for row in further_rows(*further) if only is None or row[0] in only]
     if evaluations:
         print("| problem | work per evaluation | Python ms | compiled ms |\n|---|---|---|---|")
         loading = None
-        for row, domain, problem in _rows(only):
+        for row, domain, problem in selected:
             cells, first = evaluation_costs(domain, problem)
             loading = first if loading is None else loading
             print(f"| {row} | {cells} |", flush=True)
@@ -163,7 +189,7 @@ def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: 
         print("| problem | interpreter s | imports s | read and ground s | search s | sum s |\n"
               "|---|---|---|---|---|---|")
         with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
-            for row, domain, problem in _rows(only):
+            for row, domain, problem in selected:
                 shutil.rmtree(_task_cache(Path(folder)), ignore_errors=True)
                 print(f"| {row} | {phase_split(domain, problem, Path(folder), timeout)} |", flush=True)
         return 0
@@ -177,7 +203,7 @@ def lama_first(only_rows: str | None, rounds: int, timeout: float, evaluations: 
     unsolved: list[str] = []
     with tempfile.TemporaryDirectory(prefix="symbolic-lama-") as folder:
         workdir = Path(folder)
-        for row, domain, problem in _rows(only):
+        for row, domain, problem in selected:
             commands = {planner: _command(planner, "gbfs", domain, problem, workdir, fd_script, timeout)
                         for planner in ("first", "fd")}
             runs = _measure_pair(commands, workdir, timeout, rounds)
