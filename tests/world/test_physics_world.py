@@ -9,7 +9,7 @@ from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.planning import load_task
 from kitchen_tamp.shipped_kitchens import kitchen_folder
 from kitchen_tamp.world.bodies import BASE_LINK
-from kitchen_tamp.world.physics import DEFAULT_PHYSICS, PhysicsWorld, welded_links
+from kitchen_tamp.world.physics import DEFAULT_PHYSICS, PhysicsWorld
 
 
 def test_links_welded_to_the_world_touch_without_contacts_and_the_rest_keep_theirs() -> None:
@@ -21,11 +21,11 @@ def test_links_welded_to_the_world_touch_without_contacts_and_the_rest_keep_thei
         world.step(5)
         client = kitchen.scene.client
 
-        welded = welded_links(fixture)
+        welded = fixture.welded_links()
         assert BASE_LINK in welded and fixture.link_index("robot_mount") in welded
         assert fixture.link_index("drawer") not in welded  # on a slide
         assert fixture.link_index("drawer_handle") not in welded  # rides on the drawer
-        assert welded_links(robot) == {BASE_LINK}  # the arm's first joint turns
+        assert robot.welded_links() == {BASE_LINK}  # the arm's first joint turns
 
         mount = fixture.link_index("robot_mount")
         touching = p.getClosestPoints(robot.uid, fixture.uid, 0.001, BASE_LINK, mount, physicsClientId=client)

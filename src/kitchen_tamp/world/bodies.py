@@ -26,6 +26,8 @@ class JointInfo:
     parent_index: int
     movable: bool
     revolute: bool
+    fixed: bool
+    """A fixed joint: its child link never moves relative to its parent."""
     lower: float
     upper: float
 
@@ -56,6 +58,7 @@ class Body:
                 parent_index=info[16],
                 movable=info[2] in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC),
                 revolute=info[2] == p.JOINT_REVOLUTE,
+                fixed=info[2] == p.JOINT_FIXED,
                 lower=float(info[8]),
                 upper=float(info[9]),
             )
@@ -99,6 +102,15 @@ class Body:
             return self._link_name[index]
         except KeyError:
             raise UnknownNameError(f"body {self.name!r} has no link index {index}") from None
+
+    def welded_links(self) -> frozenset[int]:
+        """The links joined to the base by fixed joints only, and the base (for a fixed-base body,
+        the links that cannot move)."""
+        welded = {BASE_LINK}
+        for joint in self.joints:  # PyBullet lists a parent's joint before its children's
+            if joint.fixed and joint.parent_index in welded:
+                welded.add(joint.index)
+        return frozenset(welded)
 
     def joint(self, name: str) -> JointInfo:
         """The joint called ``name``."""

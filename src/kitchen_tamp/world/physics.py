@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import pybullet as p
 
-from kitchen_tamp.world.bodies import BASE_LINK, Body
+from kitchen_tamp.world.bodies import Body
 from kitchen_tamp.world.robot import Robot
 from kitchen_tamp.world.scene import Scene
 from kitchen_tamp.world.transforms import FloatArray
@@ -86,17 +86,6 @@ class PhysicsSettings:
 
 
 DEFAULT_PHYSICS = PhysicsSettings()
-
-
-def welded_links(body: Body) -> frozenset[int]:
-    """A fixed-base body's links that cannot move: its base and the links joined to it by fixed
-    joints only."""
-    welded = {BASE_LINK}
-    for joint in body.joints:  # PyBullet lists a parent's joint before its children's
-        kind = p.getJointInfo(body.uid, joint.index, physicsClientId=body.client)[2]
-        if kind == p.JOINT_FIXED and joint.parent_index in welded:
-            welded.add(joint.index)
-    return frozenset(welded)
 
 
 @dataclass(frozen=True)
@@ -204,7 +193,7 @@ class PhysicsWorld:
         yet PyBullet took it as a contact every tick (the Panda's base mesh against the mount's
         box, a polyhedral test of about 75 us, 40% of a tick's collision detection) and solved
         the kitchen and the arm as one island."""
-        welded = [(body, welded_links(body)) for body in anchored]
+        welded = [(body, body.welded_links()) for body in anchored]
         for first, (body, links) in enumerate(welded):
             for other, other_links in welded[first + 1:]:
                 for link in links:
