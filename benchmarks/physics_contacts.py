@@ -31,7 +31,7 @@ def execute_one(trajectory_file: Path, model: str, problem: Path | None = None) 
     """Judge a saved run in this process under ``model``, against ``problem`` (with the domain
     and scene beside it) or else the files the run recorded."""
     from kitchen_tamp.execute import read_trajectory
-    from kitchen_tamp.execute.physics.execution import execute_under_physics
+    from kitchen_tamp.execute.physics.execution import execute_under_physics, judged_pairs
     from kitchen_tamp.execute.physics.verdict import DEFAULT_CONFIGURATION
     from kitchen_tamp.execute.verification import verify_trajectory
     from kitchen_tamp.kitchen import build_kitchen_for_task
@@ -46,7 +46,8 @@ def execute_one(trajectory_file: Path, model: str, problem: Path | None = None) 
     settings = replace(DEFAULT_CONFIGURATION.settings, polyhedral_contacts=model == "polyhedral")
     clock = time.process_time()
     physics = execute_under_physics(
-        task, run.trajectory, verification, kitchen_map, replace(DEFAULT_CONFIGURATION, settings=settings)
+        task, judged_pairs(run.trajectory, verification), kitchen_map,
+        replace(DEFAULT_CONFIGURATION, settings=settings),
     )
     return {"kinematic": verification.verified, "physics": physics.verified,
             "cpu_s": time.process_time() - clock, "problems": physics.problems}

@@ -9,7 +9,7 @@ import pickle
 import numpy as np
 import pytest
 
-from kitchen_tamp.execute import Verification, execute_under_physics
+from kitchen_tamp.execute import Verification, execute_under_physics, judged_pairs
 from kitchen_tamp.execute.physics.background_physics import PendingPhysics, PhysicsError, PhysicsJob
 from kitchen_tamp.execute.verification import judged_steps
 from kitchen_tamp.kitchen import default_kitchen_map
@@ -37,12 +37,12 @@ def test_the_judged_steps_survive_pickling(verified: Verification) -> None:
 def test_the_child_gives_the_verdict_and_recording_of_this_process(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:
-    job = PhysicsJob(kitchen_task, refined, default_kitchen_map(), replan=None, record=True)
+    job = PhysicsJob(kitchen_task, default_kitchen_map(), replan=None, record=True)
     pending = PendingPhysics(job)
-    for step in judged_steps(verified):
-        pending.judged(step)
+    for step, judged in judged_pairs(refined, verified):
+        pending.judged(step, judged)
     outcome = pending.result()
-    here = execute_under_physics(kitchen_task, refined, verified)
+    here = execute_under_physics(kitchen_task, judged_pairs(refined, verified))
     assert outcome.execution.report_data() == here.report_data()
     assert outcome.recorded is not None and outcome.recorded.captured
     assert outcome.recorded.recording.times[-1] == pytest.approx(here.simulated_s, abs=0.05)
@@ -51,15 +51,16 @@ def test_the_child_gives_the_verdict_and_recording_of_this_process(
 def test_a_failing_child_says_why(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:
-    job = PhysicsJob(kitchen_task, refined, default_kitchen_map(), replan=None, record=False)
+    job = PhysicsJob(kitchen_task, default_kitchen_map(), replan=None, record=False)
     pending = PendingPhysics(job)
-    pending.judged(next(judged_steps(verified)))  # one step of several: the child runs out of steps
+    step, (tracks, outcome) = next(judged_pairs(refined, verified))
+    pending.judged(step, (tracks[:1], outcome))  # the judge's reading of one segment of several
     with pytest.raises(PhysicsError, match="shorter"):
         pending.result()
 
 
 def test_a_cancelled_child_is_gone(kitchen_task: Task, refined: KitchenTrajectory) -> None:
-    job = PhysicsJob(kitchen_task, refined, default_kitchen_map(), replan=None, record=False)
+    job = PhysicsJob(kitchen_task, default_kitchen_map(), replan=None, record=False)
     pending = PendingPhysics(job)
     process = pending._process
     pending.cancel()

@@ -17,6 +17,7 @@ from kitchen_tamp.execute import (
     PhysicsExecution,
     Verification,
     execute_under_physics,
+    judged_pairs,
     verify_trajectory,
     write_trajectory,
 )
@@ -37,13 +38,13 @@ def _judge(task: Task, trajectory: KitchenTrajectory) -> Verification:
 
 
 def _physics(task: Task, trajectory: KitchenTrajectory, **options: object) -> PhysicsExecution:
-    return execute_under_physics(task, trajectory, _judge(task, trajectory), **options)  # type: ignore[arg-type]
+    return execute_under_physics(task, judged_pairs(trajectory, _judge(task, trajectory)), **options)  # type: ignore[arg-type]
 
 
 def test_the_kitchen_problem_holds_up_under_physics(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:
-    result = execute_under_physics(kitchen_task, refined, verified)
+    result = execute_under_physics(kitchen_task, judged_pairs(refined, verified))
     assert result.verified, result.problems
     assert result.goal_reached and all(a.as_planned for a in result.actions)
     picks = [a for a in result.actions if a.action.startswith("(pickUp")]
@@ -148,8 +149,8 @@ def test_a_move_through_the_cabinet_is_an_unplanned_contact_and_a_lag(
 def test_the_same_trajectory_gives_the_same_physics_verdict(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:
-    first = execute_under_physics(kitchen_task, refined, verified).report_data()
-    second = execute_under_physics(kitchen_task, refined, verified).report_data()
+    first = execute_under_physics(kitchen_task, judged_pairs(refined, verified)).report_data()
+    second = execute_under_physics(kitchen_task, judged_pairs(refined, verified)).report_data()
     assert first == second
 
 
@@ -200,14 +201,16 @@ def _push_off_after(
 def test_a_box_pushed_off_its_place_is_replanned_only_when_planning_and_the_file_then_verifies(
     kitchen_task: Task, refined: KitchenTrajectory, verified: Verification
 ) -> None:
-    nominal = execute_under_physics(kitchen_task, refined, verified)
+    nominal = execute_under_physics(kitchen_task, judged_pairs(refined, verified))
     nudge = _push_off_after(nominal, "(placeIn", "spam", 0.04)
-    judged = execute_under_physics(kitchen_task, refined, verified, on_frame=nudge)  # as replay judges
+    pairs = judged_pairs(refined, verified)
+    judged = execute_under_physics(kitchen_task, pairs, on_frame=nudge)  # as replay judges
     assert not judged.verified and judged.replan is None
     assert any("spam" in p and "planned pose" in p for p in judged.problems), judged.problems
     nudge = _push_off_after(nominal, "(placeIn", "spam", 0.04)
     replan = sesame_replanner(SamplingMotionBackend(), seed=0)
-    planning = execute_under_physics(kitchen_task, refined, verified, on_frame=nudge, replan=replan)
+    pairs = judged_pairs(refined, verified)
+    planning = execute_under_physics(kitchen_task, pairs, on_frame=nudge, replan=replan)
     place = next(i for i, a in enumerate(refined.plan) if a.startswith("(placeIn")) + 1
     assert planning.replan is not None and planning.replan.after == place and "spam" in planning.replan.reason
     assert planning.replan.trajectory is not None
@@ -216,5 +219,5 @@ def test_a_box_pushed_off_its_place_is_replanned_only_when_planning_and_the_file
     spliced = KitchenTrajectory(refined.steps[:place] + planning.replan.trajectory.steps)
     again = _judge(kitchen_task, spliced)  # what a planning run does next, and replay of the file
     assert again.verified, again.problems
-    result = execute_under_physics(kitchen_task, spliced, again)
+    result = execute_under_physics(kitchen_task, judged_pairs(spliced, again))
     assert result.verified, result.problems

@@ -24,6 +24,7 @@ from kitchen_tamp.cli.run_judging import (
     RunContext,
     ViewingOptions,
     finish,
+    following_judge,
     judge_and_render,
     say,
     start_live_viewer,
@@ -31,6 +32,7 @@ from kitchen_tamp.cli.run_judging import (
 from kitchen_tamp.cli.run_profile import PROFILE_OPTION, profile_if_asked
 from kitchen_tamp.execute import TRAJECTORY_FILE, RunReport, SavedRun, TrajectoryFileError, read_trajectory
 from kitchen_tamp.execute import write_trajectory as write_trajectory_file
+from kitchen_tamp.execute.following_judge import FollowingJudge
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.run_inputs import RunInputs
 from kitchen_tamp.kitchen import KitchenError, build_kitchen_for_task
@@ -147,49 +149,64 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     planner = symbolic_planner(task)
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, planner, scene=scene)
     report.inputs, report.started = inputs.data(), started
-    with build_kitchen_for_task(task, kitchen_map=kitchen_map, visuals=args.meshcat) as kitchen:
-        live = start_live_viewer(kitchen) if args.meshcat else None
-        progress = _Progress()
+    viewing, replan = _viewing(args), _physics_replanner(args.mode, args.seed)
+    followed = following_judge(task, kitchen_map, viewing, replan)  # its child gets ready meanwhile
+    try:
+        with build_kitchen_for_task(task, kitchen_map=kitchen_map, visuals=args.meshcat) as kitchen:
+            live = start_live_viewer(kitchen) if args.meshcat else None
+            progress = _Progress()
 
-        def on_sample(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
-            progress(event, record)
-            if live is not None:
-                live.update()
+            def on_sample(event: SampleEvent[State, GroundAction], record: ActionSampleRecord | None) -> None:
+                progress(event, record)
+                if live is not None:
+                    live.update()
 
-        report.timing["startup_s"] = time.perf_counter() - started
-        clock = time.perf_counter()
-        result = plan(task, planner, time_budget=SYMBOLIC_TIME_BUDGET_S)
-        report.timing["symbolic_s"] = time.perf_counter() - clock
-        if result.plan is None:
-            report.fail("symbolic", f"no symbolic plan: {result.message}")
-            return finish(report, out_dir, inputs)
-        report.plan = [action.text for action in result.plan]
-        which = "shortest plan" if planner == SYMBOLIC_PLANNER else f"{planner} plan"
-        say(f"{problem.name}: {which} has {len(result.plan)} actions; refining with SeSamE and "
-            f"{backend.name} (seed {args.seed})")
-        clock = time.perf_counter()
-        budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans, samples_per_step=args.samples_per_step,
-                          max_samples=args.max_samples)
-        options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
-        outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample)
-        report.timing["refinement_s"] = time.perf_counter() - clock
-        report.bilevel = outcome.report_data()
-        refined = outcome.refined
-        if refined is None:
-            step, action = _stuck_step(outcome)
-            reason = f"SeSamE: {outcome.result.detail}{progress.most_frequent()}"
-            report.fail("refinement", reason, step, action)
-            return finish(report, out_dir, inputs)
-        report.plan = refined.trajectory.plan
-    report.steps = [r.figures() for r in refined.records]
-    _record_step_timing(report, refined.records)
-    run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory, scene=scene,
-                   sha256=inputs.digests())
-    trajectory_file = write_trajectory_file(out_dir / TRAJECTORY_FILE, run)
+            report.timing["startup_s"] = time.perf_counter() - started
+            clock = time.perf_counter()
+            result = plan(task, planner, time_budget=SYMBOLIC_TIME_BUDGET_S)
+            report.timing["symbolic_s"] = time.perf_counter() - clock
+            if result.plan is None:
+                report.fail("symbolic", f"no symbolic plan: {result.message}")
+                return _stopped(followed, report, out_dir, inputs)
+            report.plan = [action.text for action in result.plan]
+            which = "shortest plan" if planner == SYMBOLIC_PLANNER else f"{planner} plan"
+            say(f"{problem.name}: {which} has {len(result.plan)} actions; refining with SeSamE and "
+                f"{backend.name} (seed {args.seed})")
+            clock = time.perf_counter()
+            budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans,
+                              samples_per_step=args.samples_per_step, max_samples=args.max_samples)
+            options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
+            outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample,
+                                         on_accepted=None if followed is None else followed.accepted)
+            report.timing["refinement_s"] = time.perf_counter() - clock
+            report.bilevel = outcome.report_data()
+            refined = outcome.refined
+            if refined is None:
+                step, action = _stuck_step(outcome)
+                reason = f"SeSamE: {outcome.result.detail}{progress.most_frequent()}"
+                report.fail("refinement", reason, step, action)
+                return _stopped(followed, report, out_dir, inputs)
+            report.plan = refined.trajectory.plan
+        report.steps = [r.figures() for r in refined.records]
+        _record_step_timing(report, refined.records)
+        run = SavedRun(problem, domain, args.mode, args.seed, refined.trajectory, scene=scene,
+                       sha256=inputs.digests())
+        trajectory_file = write_trajectory_file(out_dir / TRAJECTORY_FILE, run)
+    except BaseException:
+        if followed is not None:
+            followed.cancel()
+        raise
     report.outputs["trajectory"] = trajectory_file.name
-    context = RunContext(task, kitchen_map, run, trajectory_file, out_dir, report, inputs, _viewing(args),
-                         live=live, replan=_physics_replanner(args.mode, args.seed))
+    context = RunContext(task, kitchen_map, run, trajectory_file, out_dir, report, inputs, viewing,
+                         live=live, replan=replan, followed=followed)
     return judge_and_render(context)
+
+
+def _stopped(followed: FollowingJudge | None, report: RunReport, out_dir: Path, inputs: RunInputs) -> int:
+    """A run that wrote no trajectory: the judges that were to follow it stopped, the report written."""
+    if followed is not None:
+        followed.cancel()
+    return finish(report, out_dir, inputs)
 
 
 def _record_step_timing(report: RunReport, records: Sequence[ActionSampleRecord]) -> None:

@@ -12,6 +12,7 @@ gives the same verdict (at most ``MAX_REPLANS`` times).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Final
@@ -27,10 +28,16 @@ from kitchen_tamp.execute import (
     Timeline,
     Verification,
     build_timeline,
+    judged_pairs,
     verify_trajectory,
     write_trajectory,
 )
-from kitchen_tamp.execute.physics.background_physics import PendingPhysics, PhysicsJob, PhysicsOutcome
+from kitchen_tamp.execute.following_judge import FollowingJudge
+from kitchen_tamp.execute.physics.background_physics import (
+    PendingPhysics,
+    PhysicsJob,
+    PhysicsOutcome,
+)
 from kitchen_tamp.execute.physics.execution import report_seconds
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.render.background_pictures import PendingPictures, PictureJob
@@ -84,6 +91,8 @@ class RunContext:
     replan: Replanner | None = None
     """How a planning run re-plans under physics (None in a replay: it never re-plans)."""
     replans: list[dict[str, object]] = field(default_factory=list)
+    followed: FollowingJudge | None = None
+    """The judges that followed the planning run's steps as it accepted them, if any."""
 
 
 def start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
@@ -132,26 +141,74 @@ def _judge_kinematically(
     return verification, timeline
 
 
+def _judged_while_planning(
+    context: RunContext, followed: FollowingJudge
+) -> tuple[Verification, Timeline] | None:
+    """The kinematic verdict of the judge that followed the run, if it followed exactly the steps
+    written (None: the file is to be judged now)."""
+    clock = time.perf_counter()
+    judged = followed.verdict(context.run.trajectory)
+    if judged is None:
+        return None
+    verification = judged.verification
+    context.report.verification = verification.report_data()
+    context.report.timing["verification_s"] = time.perf_counter() - clock
+    context.report.timing["verification_run_s"] = judged.seconds
+    return verification, build_timeline(context.run.trajectory, verification.tracks)
+
+
+def _physics_after_following(
+    context: RunContext, followed: FollowingJudge, verification: Verification
+) -> PhysicsOutcome | None:
+    """Physics' outcome on the file the following judge read: its own if physics followed too,
+    else executed now from the judge's reading (None with physics off)."""
+    if followed.physics_job is not None:
+        return _judge_physically(context, followed.physics)
+    physics = _start_physics(context)
+    if physics is None:
+        return None
+    for step, judged in judged_pairs(context.run.trajectory, verification):
+        physics.judged(step, judged)
+    return _judge_physically(context, physics.result)
+
+
 def _spliced(run: SavedRun, after: int, rest: KitchenTrajectory) -> SavedRun:
     """``run`` with its steps after the first ``after`` replaced by ``rest``."""
     return replace(run, trajectory=KitchenTrajectory(run.trajectory.steps[:after] + rest.steps))
 
 
+def _physics_job(task: Task, kitchen_map: KitchenMap, viewing: ViewingOptions,
+                 replan: Replanner | None) -> PhysicsJob | None:
+    """What physics executes, None with physics off."""
+    return PhysicsJob(task, kitchen_map, replan, record=viewing.video) if viewing.physics else None
+
+
+def following_judge(
+    task: Task, kitchen_map: KitchenMap, viewing: ViewingOptions, replan: Replanner | None
+) -> FollowingJudge | None:
+    """The judges following a planning run's steps as it accepts them (`execute.following_judge`),
+    unless the run is looked at while it is judged (a window, Meshcat, Enter per step) or the
+    platform does not fork. Physics follows too unless the run renders its GIF: then physics
+    (recording for replay.html) and the GIF share the second core once the plan is refined, and
+    physics beside the planner would slow the planner more than it gains."""
+    if viewing.gui or viewing.meshcat or viewing.step or not FollowingJudge.available():
+        return None
+    physics = None if viewing.video else _physics_job(task, kitchen_map, viewing, replan)
+    return FollowingJudge(task, kitchen_map, physics)
+
+
 def _start_physics(context: RunContext) -> PendingPhysics | None:
     """Execution under physics started beside the kinematic judge (None with physics off)."""
-    if not context.viewing.physics:
-        return None
     replan = context.replan if len(context.replans) < MAX_REPLANS else None
-    job = PhysicsJob(context.task, context.run.trajectory, context.kitchen_map, replan,
-                     record=context.viewing.video)
-    return PendingPhysics(job)
+    job = _physics_job(context.task, context.kitchen_map, context.viewing, replan)
+    return None if job is None else PendingPhysics(job)
 
 
-def _judge_physically(context: RunContext, pending: PendingPhysics) -> PhysicsOutcome:
-    """Physics' verdict on the file (waiting for it); in a planning run, a re-plan where the scene
-    drifted is written into the file, saying so (the caller judges it again)."""
+def _judge_physically(context: RunContext, result: Callable[[], PhysicsOutcome]) -> PhysicsOutcome:
+    """Physics' verdict on the file (waiting for ``result()``); in a planning run, a re-plan where
+    the scene drifted is written into the file, saying so (the caller judges it again)."""
     clock = time.perf_counter()
-    outcome = pending.result()
+    outcome = result()
     report, execution = context.report, outcome.execution
     report.timing["physics_s"] = report_seconds(report, "physics_s") + time.perf_counter() - clock
     report.timing["physics_run_s"] = report_seconds(report, "physics_run_s") + outcome.seconds
@@ -187,21 +244,31 @@ def _start_pictures(context: RunContext) -> PendingPictures:
 
 def judge_and_render(context: RunContext) -> int:
     """Judge ``context.run`` with both judges, plot and render it, write the report; the exit code.
-    Physics executes each step on the second core as soon as the kinematic judge has read it
-    (`background_physics`); the pictures of the judge's timeline are drawn beside what follows
-    the judge, by a child that got ready meanwhile (`background_pictures`)."""
+    The verdicts of judges that followed the planning run (``context.followed``) are taken when
+    they judged exactly the file; else physics executes each step on the second core as soon as
+    the kinematic judge has read it (`background_physics`). The pictures of the judge's timeline
+    are drawn beside what follows the judge, by a child that got ready meanwhile
+    (`background_pictures`)."""
     pictures: PendingPictures | None = None
     physics: PendingPhysics | None = None
+    followed, context.followed = context.followed, None
     try:
         while True:
-            physics = _start_physics(context)
             if pictures is not None:  # the file was re-planned: its pictures are drawn again
                 pictures.cancel()
             pictures = _start_pictures(context)
-            verification, timeline = _judge_kinematically(context, physics)
-            pictures.draw(timeline)
-            outcome = None if physics is None else _judge_physically(context, physics)
-            physics = None
+            judged = None if followed is None else _judged_while_planning(context, followed)
+            if followed is not None and judged is not None:
+                verification, timeline = judged
+                pictures.draw(timeline)
+                outcome = _physics_after_following(context, followed, verification)
+            else:
+                physics = _start_physics(context)
+                verification, timeline = _judge_kinematically(context, physics)
+                pictures.draw(timeline)
+                outcome = None if physics is None else _judge_physically(context, physics.result)
+                physics = None
+            followed = None  # a re-planned file is judged once written
             replan = None if outcome is None else outcome.execution.replan
             if replan is None or replan.trajectory is None:
                 break
@@ -209,7 +276,7 @@ def judge_and_render(context: RunContext) -> int:
             context.report.fail("verification", "; ".join(verification.problems[:3]) or "verification failed")
         _render(context, timeline, None if outcome is None else outcome.recorded, pictures)
     except BaseException:
-        for pending in (pictures, physics):
+        for pending in (pictures, physics, followed):
             if pending is not None:
                 pending.cancel()
         raise

@@ -2,7 +2,7 @@
 it under physics, and
 writing what a run leaves behind: report.json, trajectory.json, replay.gif, joints.png."""
 
-from kitchen_tamp.execute.physics.execution import execute_under_physics, judge_under_physics
+from kitchen_tamp.execute.physics.execution import execute_under_physics, judge_under_physics, judged_pairs
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
 from kitchen_tamp.execute.render.joint_plot import plot_joints
 from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, render_replay, write_gif
@@ -30,6 +30,7 @@ __all__ = [
     "build_timeline",
     "execute_under_physics",
     "judge_under_physics",
+    "judged_pairs",
     "plot_joints",
     "read_trajectory",
     "render_replay",

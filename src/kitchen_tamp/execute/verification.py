@@ -45,7 +45,7 @@ from kitchen_tamp.kitchen import (
     record_conditions,
     replay_action,
 )
-from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction, Task
 from kitchen_tamp.world import Pose
 
@@ -153,45 +153,41 @@ def judged_steps(verification: Verification) -> Iterator[JudgedStep]:
     return zip(verification.tracks, verification.outcomes, strict=True)
 
 
-def verify_trajectory(
-    kitchen: KitchenScene,
-    task: Task,
-    trajectory: KitchenTrajectory,
-    resolution: float = JUDGE_RESOLUTION_RAD,
-    on_step: Callable[[int, str], None] | None = None,
-    on_judged: Callable[[JudgedStep], None] | None = None,
-) -> Verification:
-    """Replay ``trajectory`` in ``kitchen`` (freshly built for ``task``) and check it.
+class TrajectoryJudge:
+    """The kinematic judge of one trajectory a step at a time, in ``kitchen`` (freshly built
+    for ``task``): `judge` each step in order, then `finish` (``verify_trajectory`` does both
+    for a whole trajectory; a planning run's judge follows the planner's steps as they come)."""
 
-    The scene is left in the final state. ``on_step(index, action)`` is called
-    before each action (e.g. to wait for Enter), ``on_judged(step)`` once the
-    action's tracks and the scene after it are known (e.g. to execute it under
-    physics meanwhile).
-    """
-    result = Verification(resolution_rad=resolution)
-    state = task.initial_state
-    if trajectory.steps and not np.allclose(
-        trajectory.steps[0].start, kitchen.arm_configuration(), atol=1e-6
-    ):
-        result.continuous = False
-        result.problems.append("the trajectory does not start at the arm's home configuration")
-    for index, step in enumerate(trajectory.steps):
-        if on_step is not None:
-            on_step(index, step.action)
+    def __init__(self, kitchen: KitchenScene, task: Task, resolution: float = JUDGE_RESOLUTION_RAD) -> None:
+        self.kitchen, self.task = kitchen, task
+        self.result = Verification(resolution_rad=resolution)
+        self._home = kitchen.arm_configuration()
+        self._state = task.initial_state
+
+    @property
+    def judged(self) -> int:
+        """Steps judged so far."""
+        return len(self.result.tracks)
+
+    def judge(self, step: ActionTrajectory) -> JudgedStep:
+        """Replay and check the next step; the scene is left after it."""
+        result, task, kitchen = self.result, self.task, self.kitchen
+        index = self.judged
+        if index == 0 and not np.allclose(step.start, self._home, atol=1e-6):
+            result.continuous = False
+            result.problems.append("the trajectory does not start at the arm's home configuration")
         label = f"step {index + 1} {step.action}"
         action = parse_action(task, step.action)
         if action is None:
             result.problems.append(f"{label}: not an action of the task")
-        elif not action.applicable(state):
+        elif not action.applicable(self._state):
             result.problems.append(f"{label}: not applicable in the planned state")
         else:
-            state = action.apply(state)
+            self._state = action.apply(self._state)
         args = tuple(action.args) if action is not None else tuple(_words(step.action)[1:])
-        replay = replay_action(kitchen, label, args, step.segments, resolution, measure=True)
+        replay = replay_action(kitchen, label, args, step.segments, result.resolution_rad, measure=True)
         result.tracks.append(tuple(replay.tracks))
         result.outcomes.append(step_outcome(kitchen, tuple(args)))
-        if on_judged is not None:
-            on_judged((result.tracks[-1], result.outcomes[-1]))
         result.problems += replay.problems
         result.configurations_checked += replay.configurations_checked
         result.collision_free &= replay.collision_free
@@ -203,12 +199,40 @@ def verify_trajectory(
         if condition_problem is not None:
             result.problems.append(f"{label}: {condition_problem}")
         observed = abstract_state(kitchen, task.objects)
-        expected = task.state_atoms(state)
-        mismatch = state_mismatch(observed, expected)
+        mismatch = state_mismatch(observed, task.state_atoms(self._state))
         result.steps_as_planned.append(mismatch is None)
         if mismatch is not None:
             result.problems.append(f"{label} {step.segments[-1].name} (its last segment): {mismatch}")
-    final = abstract_state(kitchen, task.objects)
-    result.final_atoms = atoms_text(final)
-    result.goal_atoms = goal_literals(task, final)
-    return result
+        return result.tracks[-1], result.outcomes[-1]
+
+    def finish(self) -> Verification:
+        """The verdict once every step was judged: the goal read off the scene as it is."""
+        final = abstract_state(self.kitchen, self.task.objects)
+        self.result.final_atoms = atoms_text(final)
+        self.result.goal_atoms = goal_literals(self.task, final)
+        return self.result
+
+
+def verify_trajectory(
+    kitchen: KitchenScene,
+    task: Task,
+    trajectory: KitchenTrajectory,
+    resolution: float = JUDGE_RESOLUTION_RAD,
+    on_step: Callable[[int, str], None] | None = None,
+    on_judged: Callable[[ActionTrajectory, JudgedStep], None] | None = None,
+) -> Verification:
+    """Replay ``trajectory`` in ``kitchen`` (freshly built for ``task``) and check it.
+
+    The scene is left in the final state. ``on_step(index, action)`` is called
+    before each action (e.g. to wait for Enter), ``on_judged(step, judged)`` once the
+    action's tracks and the scene after it are known (e.g. to execute it under
+    physics meanwhile).
+    """
+    judge = TrajectoryJudge(kitchen, task, resolution)
+    for index, step in enumerate(trajectory.steps):
+        if on_step is not None:
+            on_step(index, step.action)
+        judged = judge.judge(step)
+        if on_judged is not None:
+            on_judged(step, judged)
+    return judge.finish()

@@ -2,8 +2,9 @@
 
 Physics needs of the kinematic judge only what it read in each step (its tracks and
 the scene after it: a ``JudgedStep``), and the judge needs nothing of physics, so a
-forked child executes the trajectory while the parent judges it: the parent hands
-over each step as soon as it is judged (pickled, on a queue, so the judge never waits), the child
+forked child executes the trajectory while the judge reads it: the judge hands
+over each step with its reading as soon as it is judged (pickled, on a queue, so
+the judge never waits), the child
 executes each step once it has it, and sends back its verdict and, when asked, what
 it recorded for ``replay.html``. A planning run's re-plan under physics happens in
 the child too (its ``Replanner`` is inherited by the fork; only its result comes
@@ -16,21 +17,20 @@ from __future__ import annotations
 import multiprocessing
 import multiprocessing.queues
 import pickle
-import queue
 import time
 import traceback
 from collections.abc import Iterator
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
 
-from kitchen_tamp.execute.physics.execution import execute_under_physics
+from kitchen_tamp.execute.from_parent import next_from_parent
+from kitchen_tamp.execute.physics.execution import JudgedPair, execute_under_physics
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
-from kitchen_tamp.execute.render.background_pictures import PARENT_CHECK_S
 from kitchen_tamp.execute.render.browser_replay import RecordedRollout, RolloutRecorder
 from kitchen_tamp.execute.verification import JudgedStep
 from kitchen_tamp.kitchen import KitchenMap
-from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.kitchen.trajectory import ActionTrajectory
 from kitchen_tamp.planning import Task
 
 
@@ -50,20 +50,19 @@ class PhysicsOutcome:
 
 @dataclass(frozen=True, eq=False)
 class PhysicsJob:
-    """What to execute: the trajectory of ``task`` in the kitchen of ``kitchen_map``, re-planning
-    with ``replan`` if given, recording the rollout for ``replay.html`` if ``record``."""
+    """What to execute: steps of ``task`` (handed over as judged) in the kitchen of ``kitchen_map``,
+    re-planning with ``replan`` if given, recording the rollout for ``replay.html`` if ``record``."""
 
     task: Task
-    trajectory: KitchenTrajectory
     kitchen_map: KitchenMap
     replan: Replanner | None
     record: bool
 
-    def run(self, judged: Iterator[JudgedStep]) -> PhysicsOutcome:
+    def run(self, judged: Iterator[JudgedPair]) -> PhysicsOutcome:
         clock = time.perf_counter()
         recorder = RolloutRecorder() if self.record else None
-        execution = execute_under_physics(self.task, self.trajectory, judged, self.kitchen_map,
-                                          on_frame=recorder, replan=self.replan)
+        execution = execute_under_physics(self.task, judged, self.kitchen_map, on_frame=recorder,
+                                          replan=self.replan)
         recorded = None if recorder is None else recorder.recorded()
         return PhysicsOutcome(execution, recorded, time.perf_counter() - clock)
 
@@ -72,20 +71,8 @@ _END = None
 """Put on the queue after the last judged step."""
 
 
-def _next_queued(steps: multiprocessing.queues.Queue[bytes | None]) -> bytes | None:
-    """The next item on ``steps``; raises EOFError when the parent process is gone (the child
-    holds a copy of the queue's sending end, so it would wait for ever)."""
-    parent = multiprocessing.parent_process()
-    while True:
-        try:
-            return steps.get(timeout=PARENT_CHECK_S)
-        except queue.Empty:
-            if parent is not None and not parent.is_alive():
-                raise EOFError("the parent process ended") from None
-
-
-def _queued_steps(steps: multiprocessing.queues.Queue[bytes | None]) -> Iterator[JudgedStep]:
-    while (step := _next_queued(steps)) is not _END:
+def _queued_steps(steps: multiprocessing.queues.Queue[bytes | None]) -> Iterator[JudgedPair]:
+    while (step := next_from_parent(steps)) is not _END:
         yield pickle.loads(step)
 
 
@@ -106,7 +93,7 @@ class PendingPhysics:
 
     def __init__(self, job: PhysicsJob) -> None:
         self.job = job
-        self._kept: list[JudgedStep] = []
+        self._kept: list[JudgedPair] = []
         self._process: multiprocessing.process.BaseProcess | None = None
         self._receiver: Connection | None = None
         self._steps: multiprocessing.queues.Queue[bytes | None] | None = None
@@ -120,12 +107,12 @@ class PendingPhysics:
             self._process.start()
             sender.close()
 
-    def judged(self, step: JudgedStep) -> None:
-        """Hands over the next step as the kinematic judge read it."""
+    def judged(self, step: ActionTrajectory, judged: JudgedStep) -> None:
+        """Hands over the file's next step and how the kinematic judge read it."""
         if self._steps is None:
-            self._kept.append(step)
+            self._kept.append((step, judged))
         else:
-            self._steps.put(pickle.dumps(step))  # here, so that what does not pickle raises here
+            self._steps.put(pickle.dumps((step, judged)))  # here, so that what does not pickle raises here
 
     def result(self) -> PhysicsOutcome:
         """Once every step was handed over: waits for the verdict; raises `PhysicsError` with the

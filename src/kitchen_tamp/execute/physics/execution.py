@@ -27,7 +27,7 @@ and judges the file again (``kitchen_tamp.execute.judging``).
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 
 from kitchen_tamp.execute.atom_comparison import atoms_text, goal_literals
 from kitchen_tamp.execute.physics.replanning import ArmState, Replanner, replan_rest
@@ -42,30 +42,35 @@ from kitchen_tamp.execute.run_report import RunReport
 from kitchen_tamp.execute.verification import JudgedStep, Verification, judged_steps, parse_action
 from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_task, record_conditions
 from kitchen_tamp.kitchen.abstraction import supports_of
-from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
+from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Atom, Task
 from kitchen_tamp.world.physics import PhysicsWorld
+
+JudgedPair = tuple[ActionTrajectory, JudgedStep]
+"""A step of the file and how the kinematic judge read it."""
+
+
+def judged_pairs(trajectory: KitchenTrajectory, judged: Verification) -> Iterator[JudgedPair]:
+    """The steps of ``trajectory`` with the judge's reading of each (from a finished verification)."""
+    return zip(trajectory.steps, judged_steps(judged), strict=True)
 
 
 def execute_under_physics(
     task: Task,
-    trajectory: KitchenTrajectory,
-    judged: Verification | Iterable[JudgedStep],
+    steps: Iterable[JudgedPair],
     kitchen_map: KitchenMap | None = None,
     configuration: PhysicsConfiguration = DEFAULT_CONFIGURATION,
     on_frame: FrameCallback | None = None,
     replan: Replanner | None = None,
 ) -> PhysicsExecution:
-    """Run ``trajectory`` (as the kinematic judge read it: ``judged``) in a fresh simulated
-    kitchen for ``task`` and judge it. ``judged`` may also be the judge's steps as they come
+    """Run the file's ``steps`` (each with the kinematic judge's reading of it) in a fresh
+    simulated kitchen for ``task`` and judge them. ``steps`` may come as the judge reads them
     (`verify_trajectory`'s ``on_judged``): each is taken only when its action is executed.
 
     With ``replan``, a scene that has drifted beyond tolerance after an action (Ψ still as
     planned, hand empty, actions left) stops the execution with ``replan``'s refinement of
     the rest of the plan from the scene as it is (``PhysicsExecution.replan``)."""
     result = PhysicsExecution(configuration)
-    steps = trajectory.steps
-    judged_in_order = judged_steps(judged) if isinstance(judged, Verification) else judged
     settings = configuration.settings
     with build_kitchen_for_task(
         task, kitchen_map=kitchen_map, polyhedral_contacts=settings.polyhedral_contacts,
@@ -78,7 +83,10 @@ def execute_under_physics(
         rollout = Rollout(kitchen, world, result, dict(task.objects), on_frame)
         rollout.settle()
         state = task.initial_state
-        for index, (step, (tracks, outcome)) in enumerate(zip(steps, judged_in_order, strict=True)):
+        coming = iter(steps)
+        index, current = 0, next(coming, None)
+        while current is not None:
+            step, (tracks, outcome) = current
             figures = rollout.run_action(index, step, tracks, outcome)
             action = parse_action(task, step.action)
             if action is not None and action.applicable(state):
@@ -92,11 +100,12 @@ def execute_under_physics(
             drift = rollout.compare(figures, outcome, planned)
             result.actions.append(figures)
             result.problems.extend(drift)
-            steady = figures.as_planned and figures.held_box is None and index + 1 < len(steps)
+            index, current = index + 1, next(coming, None)  # asked only now: it may still be coming
+            steady = figures.as_planned and figures.held_box is None and current is not None
             if drift and replan is not None and steady:
                 arm = ArmState(step.end, float(step.segments[-1].gripper_widths[-1]))
                 again = replan_rest(task, state, kitchen, arm, replan)
-                result.replan = Replan(index + 1, "; ".join(drift), again)
+                result.replan = Replan(index, "; ".join(drift), again)
                 break
         final = rollout.observed_atoms()
         result.final_atoms = atoms_text(final)
@@ -135,7 +144,8 @@ def judge_under_physics(
     if None) and record the verdict in ``report``: its ``physics`` section,
     ``timing.physics_s`` and, if physics failed, the run's failure."""
     clock = time.perf_counter()
-    execution = execute_under_physics(task, trajectory, judged, kitchen_map, on_frame=on_frame, replan=replan)
+    execution = execute_under_physics(task, judged_pairs(trajectory, judged), kitchen_map, on_frame=on_frame,
+                                      replan=replan)
     report.timing["physics_s"] = report_seconds(report, "physics_s") + time.perf_counter() - clock
     report.physics = execution.report_data()
     if not execution.verified and execution.replan is None:

@@ -17,6 +17,7 @@ their result is asked for.
 from __future__ import annotations
 
 import multiprocessing
+import multiprocessing.queues
 import time
 import traceback
 from collections.abc import Callable
@@ -25,6 +26,7 @@ from functools import partial
 from multiprocessing.connection import Connection
 from pathlib import Path
 
+from kitchen_tamp.execute.from_parent import next_from_parent
 from kitchen_tamp.execute.render.joint_plot import load_plotting, plot_joints
 from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, ReplayRenderer, write_gif
 from kitchen_tamp.execute.timeline import Timeline
@@ -33,8 +35,6 @@ from kitchen_tamp.planning import Task
 
 GIF_FILE = "replay.gif"
 JOINTS_FILE = "joints.png"
-PARENT_CHECK_S = 1.0
-"""How often (s) a child waiting for its parent checks that the parent still runs."""
 
 
 class PictureError(RuntimeError):
@@ -104,20 +104,12 @@ class PictureJob:
         return Pictures(joints, joints_s, gif, len(images), time.perf_counter() - clock)
 
 
-def _received(connection: Connection) -> object:
-    """The next object sent on ``connection``; raises EOFError when the parent process is gone
-    (the child holds a copy of the sending end, so it would never see the end of the pipe)."""
-    parent = multiprocessing.parent_process()
-    while not connection.poll(PARENT_CHECK_S):
-        if parent is not None and not parent.is_alive():
-            raise EOFError("the parent process ended")
-    return connection.recv()
-
-
-def _draw_in_child(job: PictureJob, timelines: Connection | None, sender: Connection) -> None:
+def _draw_in_child(
+    job: PictureJob, timelines: multiprocessing.queues.Queue[Timeline] | None, sender: Connection
+) -> None:
     try:
-        timeline_of = None if timelines is None else partial(_received, timelines)
-        sender.send(job.run(timeline_of))  # type: ignore[arg-type]
+        timeline_of = None if timelines is None else partial(next_from_parent, timelines)
+        sender.send(job.run(timeline_of))
     except BaseException:  # whatever it was, the parent reports it
         sender.send(traceback.format_exc())
     finally:
@@ -131,27 +123,25 @@ class PendingPictures:
         self.job = job
         self._process: multiprocessing.process.BaseProcess | None = None
         self._receiver: Connection | None = None
-        self._timeline_sender: Connection | None = None
+        self._timelines: multiprocessing.queues.Queue[Timeline] | None = None
         self._timeline: Timeline | None = job.timeline
         if "fork" in multiprocessing.get_all_start_methods():
             context = multiprocessing.get_context("fork")
             self._receiver, sender = context.Pipe(duplex=False)
-            timelines = None
             if job.timeline is None:
-                timelines, self._timeline_sender = context.Pipe(duplex=False)
-            self._process = context.Process(target=_draw_in_child, args=(job, timelines, sender), daemon=True)
+                self._timelines = context.Queue()
+                self._timelines.cancel_join_thread()  # a cancelled child reads nothing
+            self._process = context.Process(target=_draw_in_child, args=(job, self._timelines, sender),
+                                            daemon=True)
             self._process.start()
             sender.close()
-            if timelines is not None:
-                timelines.close()
 
     def draw(self, timeline: Timeline) -> None:
-        """Hands over the timeline of a job made without one."""
+        """Hands over the timeline of a job made without one (without waiting for the child to
+        take it)."""
         self._timeline = timeline
-        if self._timeline_sender is not None:
-            self._timeline_sender.send(timeline)
-            self._timeline_sender.close()
-            self._timeline_sender = None
+        if self._timelines is not None:
+            self._timelines.put(timeline)
 
     def _timeline_here(self) -> Timeline:
         if self._timeline is None:
@@ -181,7 +171,8 @@ class PendingPictures:
             self._process.join()
             for unfinished in self.job.out_dir.glob(f".*.{self._process.pid}.*.tmp"):
                 unfinished.unlink(missing_ok=True)
-        for connection in (self._receiver, self._timeline_sender):
-            if connection is not None:
-                connection.close()
-        self._process = self._receiver = self._timeline_sender = None
+        if self._receiver is not None:
+            self._receiver.close()
+        if self._timelines is not None:
+            self._timelines.close()
+        self._process = self._receiver = self._timelines = None
