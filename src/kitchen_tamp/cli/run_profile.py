@@ -9,14 +9,16 @@ process that draws replay.gif is not in it: its seconds are ``timing.gif_s``.
 
 from __future__ import annotations
 
-import cProfile
 import io
 import marshal
-import pstats
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from kitchen_tamp.atomic_files import write_atomically
+
+if TYPE_CHECKING:  # the profiler's modules load only when a profile is asked for
+    import cProfile
 
 PROFILE_OPTION = "--profile"
 PROFILE_FILE = "profile.prof"
@@ -29,6 +31,8 @@ _running: list[cProfile.Profile] = []
 def profile_if_asked(argv: Sequence[str]) -> None:
     """Start profiling when ``--profile`` is among the arguments (unless it has started)."""
     if PROFILE_OPTION in argv and not _running:
+        import cProfile
+
         profiler = cProfile.Profile()
         _running.append(profiler)
         profiler.enable()
@@ -39,6 +43,8 @@ def write_profile(folder: Path) -> Path | None:
     folder); None when no profile was asked for."""
     if not _running:
         return None
+    import pstats
+
     profiler = _running.pop()
     profiler.disable()
     text = io.StringIO()

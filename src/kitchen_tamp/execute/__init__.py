@@ -4,8 +4,6 @@ writing what a run leaves behind: report.json, trajectory.json, replay.gif, join
 
 from kitchen_tamp.execute.physics.execution import execute_under_physics, judge_under_physics, judged_pairs
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
-from kitchen_tamp.execute.render.joint_plot import plot_joints
-from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, render_replay, write_gif
 from kitchen_tamp.execute.run_report import REPORT_FILE, RunReport
 from kitchen_tamp.execute.timeline import Timeline, build_timeline
 from kitchen_tamp.execute.trajectory_file import (
@@ -18,7 +16,6 @@ from kitchen_tamp.execute.trajectory_file import (
 from kitchen_tamp.execute.verification import Verification, verify_trajectory
 
 __all__ = [
-    "FRAME_SECONDS",
     "REPORT_FILE",
     "TRAJECTORY_FILE",
     "PhysicsExecution",
@@ -31,10 +28,7 @@ __all__ = [
     "execute_under_physics",
     "judge_under_physics",
     "judged_pairs",
-    "plot_joints",
     "read_trajectory",
-    "render_replay",
     "verify_trajectory",
-    "write_gif",
     "write_trajectory",
 ]

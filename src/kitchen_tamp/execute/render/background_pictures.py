@@ -27,8 +27,6 @@ from multiprocessing.connection import Connection
 from pathlib import Path
 
 from kitchen_tamp.execute.from_parent import next_from_parent
-from kitchen_tamp.execute.render.joint_plot import load_plotting, plot_joints
-from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, ReplayRenderer, write_gif
 from kitchen_tamp.execute.timeline import Timeline
 from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
 from kitchen_tamp.planning import Task
@@ -76,12 +74,17 @@ class PictureJob:
         timeline = timeline or self.timeline
         if timeline is None:
             raise ValueError("no timeline to plot")
+        from kitchen_tamp.execute.render.joint_plot import plot_joints  # PIL: only where it draws
+
         path = plot_joints(timeline, self.joints_title, self.out_dir / JOINTS_FILE, self.velocities)
         return path, time.perf_counter() - clock
 
     def run(self, timeline_of: Callable[[], Timeline] | None = None) -> Pictures:
         """Draws the pictures of the job's timeline, else of ``timeline_of()``, asked for once
         what can be done without it is done."""
+        from kitchen_tamp.execute.render.joint_plot import load_plotting  # PIL: only where it draws
+        from kitchen_tamp.execute.render.replay_video import FRAME_SECONDS, ReplayRenderer, write_gif
+
         if self.joints:
             load_plotting()
 

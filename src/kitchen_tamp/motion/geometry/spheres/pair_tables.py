@@ -32,6 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.kernels.loading import sphere_kernels
+from kitchen_tamp.motion.geometry.spheres.kinematics import JointAxes, TreeLayout
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_pair_cells, save_pair_cells
 
@@ -111,11 +112,14 @@ def _two_joints(scene: SphereScene, g: int, h: int) -> tuple[int, int, int, int]
     return near, far, first, second
 
 
-def _reaches(scene: SphereScene, far: int, first: int, second: int, q: FloatArray) -> tuple[float, float]:
+def _reaches(
+    scene: SphereScene, far: int, first: int, second: int, at: tuple[FloatArray, JointAxes]
+) -> tuple[float, float]:
     """How far (m) from each joint's axis the far group's points can be: every sphere centre and
     every bound the kernel places lies in the box of the group's sphere centres, so its corners
-    bound them; the farther joint's anchor is a fixed distance from the nearer joint's."""
-    poses, axes = scene.tree.joint_axes(q[None])
+    bound them; the farther joint's anchor is a fixed distance from the nearer joint's. ``at``: the
+    tree's link poses and joint axes at one configuration (`KinematicTree.joint_axes`)."""
+    poses, axes = at
     group = scene.groups[far]
     centers = np.concatenate([scene.sphere_centers[group.spheres], scene.fine_centers[group.fine_spheres]])
     low, high = centers.min(axis=0), centers.max(axis=0)
@@ -129,6 +133,7 @@ def _reaches(scene: SphereScene, far: int, first: int, second: int, q: FloatArra
 
 def _cache_key(
     scene: SphereScene,
+    layout: TreeLayout,
     near: int,
     far: int,
     variables: tuple[int, int],
@@ -139,7 +144,6 @@ def _cache_key(
     """The pair's spheres and the joints from one link to the other (not where the robot stands nor
     its other joints: they do not move one link relative to the other)."""
     digest = hashlib.sha256(PAIR_TABLE_VERSION.encode())
-    layout = scene.tree.flat_layout()
     link, stop = scene.groups[far].robot_link, scene.groups[near].robot_link
     while link not in (stop, -1):
         for array in (layout.origins[link], layout.held[link], layout.kinds[link], layout.axes[link]):
@@ -200,6 +204,7 @@ def pair_tables(scene: SphereScene, arguments: tuple[Any, ...], margin: float) -
     with the kernel ``arguments`` laid out without tables (`sphere_kernel_layout.kernel_arguments`)."""
     lower, upper = np.asarray(arguments[0], dtype=float), np.asarray(arguments[1], dtype=float)
     middle = (lower + upper) / 2.0
+    at_middle, layout = scene.tree.joint_axes(middle[None]), scene.tree.flat_layout()
     pair_index = np.full(len(scene.group_pairs), -1, dtype=np.int64)
     variables: list[tuple[int, int]] = []
     lows: list[FloatArray] = []
@@ -213,14 +218,14 @@ def pair_tables(scene: SphereScene, arguments: tuple[Any, ...], margin: float) -
         if placed is None:
             continue
         near, far, first, second = placed
-        reaches = np.array(_reaches(scene, far, first, second, middle))
+        reaches = np.array(_reaches(scene, far, first, second, at_middle))
         span = upper[[first, second]] - lower[[first, second]]
         count = np.maximum(np.ceil(span * reaches / TABLE_SLACK), 1).astype(np.int64)
         if int(np.prod(count)) > MAX_CELLS:
             continue
         step = span / count
         low = lower[[first, second]]
-        key = _cache_key(scene, near, far, (first, second), np.stack([low, span]), margin, step)
+        key = _cache_key(scene, layout, near, far, (first, second), np.stack([low, span]), margin, step)
         proved = _stored_cells(key)
         if proved is None or len(proved) != int(np.prod(count)):
             slack = float(np.dot(reaches, step)) / 2.0 + _BOUNDARY_SLACK

@@ -245,7 +245,6 @@ class SphereScene:
             link_poses = KinematicTree(model, base, body.joint_positions).link_poses(np.zeros((1, 0)))[0]
             world_from[body.name] = link_poses[0]
             for shape in model.collisions:
-                vertices = shape_polytope(shape).vertices
                 kinds.append(SHAPE_KINDS.get(shape.kind, SHAPE_BOX))
                 if shape.kind == "box":
                     local_pose, half = shape.origin, shape.size / 2.0
@@ -253,7 +252,8 @@ class SphereScene:
                     local_pose, half = shape.origin, np.full(3, shape.size[0])
                 elif shape.kind == "cylinder":
                     local_pose, half = shape.origin, shape.size[[0, 0, 1]] * [1.0, 1.0, 0.5]
-                else:
+                else:  # a mesh: the box around its hull
+                    vertices = shape_polytope(shape).vertices
                     local_pose = np.eye(4)
                     local_pose[:3, 3] = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
                     half = (vertices.max(axis=0) - vertices.min(axis=0)) / 2.0
