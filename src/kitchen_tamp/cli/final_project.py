@@ -150,9 +150,12 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     report = RunReport(problem, domain, args.mode, backend.name, args.seed, planner, scene=scene)
     report.inputs, report.started = inputs.data(), started
     viewing, replan = _viewing(args), _physics_replanner(args.mode, args.seed)
-    followed = following_judge(task, kitchen_map, viewing, replan)  # its child gets ready meanwhile
+    followed: FollowingJudge | None = None
     try:
         with build_kitchen_for_task(task, kitchen_map=kitchen_map, visuals=args.meshcat) as kitchen:
+            # Forked once a kitchen is built, so that its children build theirs from PyBullet's
+            # warm file cache; they get ready while the plan is found.
+            followed = following_judge(task, kitchen_map, viewing, replan)
             live = start_live_viewer(kitchen) if args.meshcat else None
             progress = _Progress()
 

@@ -72,7 +72,7 @@ def _follow(
     try:
         physics = None if physics_job is None else PendingPhysics(physics_job)
         seconds = 0.0
-        with build_kitchen_for_task(task, kitchen_map=kitchen_map) as fresh:
+        with build_kitchen_for_task(task, kitchen_map=kitchen_map, visuals=False) as fresh:  # unseen
             judge = TrajectoryJudge(fresh, task)
             while (item := next_from_parent(steps)) is not _END:
                 clock = time.perf_counter()
