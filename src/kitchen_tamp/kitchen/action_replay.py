@@ -206,7 +206,7 @@ class _Replayer:
         kitchen.set_opening(gripped.drawer, float(np.clip(wanted, lower, upper)))
 
     # -- one segment -------------------------------------------------------------------------------
-    def segment(self, segment: Segment, check: bool = True) -> None:
+    def segment(self, segment: Segment) -> None:
         robot = self.kitchen.robot
         self.where = f"{self.label} {segment.name}"
         out_of_range = range_problem(robot, segment)
@@ -217,11 +217,9 @@ class _Replayer:
                 return
             segment = clipped_to_range(robot, segment)
         samples = interpolate_segment(segment, self.resolution)
+        self.result.configurations_checked += len(samples)
         track, runs = self._walk(segment, samples)
         self.result.tracks.append(track)
-        if not check:
-            return
-        self.result.configurations_checked += len(samples)
         for run in runs:
             if (not self._check(samples, track.openings, run) or self.result.problems) and not self.measure:
                 return
@@ -312,19 +310,14 @@ def replay_action(
     segments: Sequence[Segment],
     resolution: float = JUDGE_RESOLUTION_RAD,
     measure: bool = True,
-    checked_before: int | None = None,
 ) -> ActionReplay:
     """Replay the segments of an action with arguments ``args`` from the scene as it is, and
     leave the scene in the state they lead to. ``label`` (e.g. ``step 2 (pickUp sugar
     stove)``) starts every problem, followed by the segment's name. With ``measure`` every
-    state's clearance is measured; without, checking stops at the first problem.
-
-    ``checked_before``: only the segments before this index are checked; the rest are walked
-    (poses, grasps, the drawer's travel), to leave the scene after them. For a planner whose
-    skill checked those segments already from the state they start in (`first_problem`)."""
+    state's clearance is measured; without, checking stops at the first problem."""
     replayer = _Replayer(kitchen, label, args, resolution, measure)
-    for index, segment in enumerate(segments):
-        replayer.segment(segment, check=checked_before is None or index < checked_before)
+    for segment in segments:
+        replayer.segment(segment)
         if replayer.result.problems and not measure:
             break
     return replayer.result

@@ -2,10 +2,7 @@
 the arm to them, the judge's replay of the whole action (``kitchen.replay_action``, at
 the judge's resolution with its contact policy) must find nothing, and the scene
 advances to the outcome that replay derives -- so an accepted step is one the judge
-accepts, and a step it would reject is a failed sample. A skill that replayed its own
-segments so already, from the state they start in (``SkillTargets.segments_judged``), has
-them walked, not checked again: the free-space move before them leaves the scene as the
-skill saw it but for the arm, which it leaves where they start.
+accepts, and a step it would reject is a failed sample.
 
 This is one sample of the kitchen's trajectory sampler; ``kitchen_sesame``
 decides which action to sample next, how often, and when to step back.
@@ -140,9 +137,7 @@ def refine_action(
     move = Segment(FREE_SPACE_SEGMENT, solution.path, np.full(len(solution.path), targets.gripper_width))
     trajectory = ActionTrajectory(action.text, (move, *targets.segments))
     before, clock = kitchen.scene.save_state(), time.perf_counter()
-    checked_before = 1 if targets.segments_judged else None  # the skill checked its own segments
-    judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False,
-                           checked_before=checked_before)
+    judged = replay_action(kitchen, action.text, action.args, trajectory.segments, measure=False)
     seconds["judge_replay_s"] = time.perf_counter() - clock
     if judged.problems:
         kitchen.scene.restore_state(before)

@@ -164,7 +164,6 @@ class OpenProblem:
             segments=segments,
             free_space_checker=self.free_checker,
             samples_tried=samples_tried,
-            segments_judged=True,  # `segments` replays them as the judge would
         )
 
     def exhausted(self, attempts: int) -> str:

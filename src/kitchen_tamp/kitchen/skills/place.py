@@ -188,7 +188,6 @@ class PlaceProblem:
             segments=segments,
             free_space_checker=self.carrying_checker,
             samples_tried=samples_tried,
-            segments_judged=True,  # `segments` replays them as the judge would
         )
 
     def exhausted(self, attempts: int) -> str:

@@ -32,10 +32,6 @@ class SkillTargets:
     segments: tuple[Segment, ...]
     free_space_checker: PyBulletCollisionChecker
     samples_tried: int
-    segments_judged: bool = False
-    """Whether the skill replayed ``segments`` as the judge would (`first_problem`), from their first
-    state with the rest of the scene as it is, and found nothing: refinement then only walks them
-    after the free-space move, which leaves the scene as it found it but for the arm."""
 
     def __post_init__(self) -> None:
         if not self.segments:
