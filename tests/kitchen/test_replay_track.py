@@ -27,12 +27,12 @@ def test_the_state_at_a_point_of_an_interval_lies_on_it() -> None:
     qs = np.array([[0.0, 0.0], [0.1, 0.0], [0.1, 0.3], [0.1, 0.31]])
     segment = Segment("s", qs, np.full(4, 0.08))
     track = _track(segment, 0.01)
-    for interval in range(3):
-        for fraction in np.linspace(0.0, 1.0, 11):
-            state = track.state_at(interval, float(fraction))
-            wanted = qs[interval] + fraction * (qs[interval + 1] - qs[interval])
-            assert np.linalg.norm(track.samples.configurations[state] - wanted) <= 0.005 + 1e-12
-    assert track.state_at(0, 0.0) == 0 and track.state_at(2, 1.0) == len(track) - 1
+    intervals, fractions = np.repeat(np.arange(3), 11), np.tile(np.linspace(0.0, 1.0, 11), 3)
+    states = track.states_at(intervals, fractions)
+    for interval, fraction, state in zip(intervals, fractions, states, strict=True):
+        wanted = qs[interval] + fraction * (qs[interval + 1] - qs[interval])
+        assert np.linalg.norm(track.samples.configurations[state] - wanted) <= 0.005 + 1e-12
+    assert states[0] == 0 and states[-1] == len(track) - 1
 
 
 @pytest.fixture(scope="module")

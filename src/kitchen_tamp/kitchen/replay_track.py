@@ -13,9 +13,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+import numpy as np
+import numpy.typing as npt
+
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples
 from kitchen_tamp.world import FloatArray, Pose
+
+IndexArray = npt.NDArray[np.intp]
 
 
 @dataclass(frozen=True)
@@ -62,17 +67,17 @@ class SegmentTrack:
         """Whether the fingers hold something (a box or a handle) in state ``index``."""
         return self.carried[index] is not None or self.gripped[index] is not None
 
-    def state_at(self, interval: int, fraction: float) -> int:
-        """The replayed state nearest a point ``fraction`` of the way along waypoint interval
-        ``interval`` (states of an interval are evenly spaced after its first waypoint)."""
+    def states_at(self, intervals: IndexArray, fractions: FloatArray) -> IndexArray:
+        """Per (waypoint interval, fraction of the way along it): the replayed state nearest that
+        point (states of an interval are evenly spaced after its first waypoint)."""
         owners = self.samples.waypoint_of
-        start = int(owners.searchsorted(interval, side="left"))
-        end = int(owners.searchsorted(interval, side="right"))
+        start = owners.searchsorted(intervals, side="left")
+        end = owners.searchsorted(intervals, side="right")
         # the interval's states are at fractions 1/count ... 1 after the state of its first
         # waypoint (state 0 is the first waypoint itself and also lies in interval 0)
-        base = 0 if interval == 0 else start - 1
+        base = np.where(intervals == 0, 0, start - 1)
         count = end - 1 - base
-        return base + round(min(max(fraction, 0.0), 1.0) * count)
+        return base + np.round(np.clip(fractions, 0.0, 1.0) * count).astype(np.intp)
 
     def pose(self, kitchen: KitchenScene, index: int) -> None:
         """Put ``kitchen`` (replayed up to the state before) in state ``index``."""

@@ -101,6 +101,11 @@ class RobotContact:
     """Newtons."""
 
 
+def _floats(values: FloatArray | Sequence[float]) -> list[float]:
+    """``values`` as the list of Python floats the simulator takes (a list is taken as it is)."""
+    return values if isinstance(values, list) else np.asarray(values, dtype=float).tolist()
+
+
 class PhysicsWorld:
     """Steps ``scene`` with gravity; drives ``robot``'s arm and fingers by motors.
 
@@ -241,8 +246,8 @@ class PhysicsWorld:
             self.robot.body.uid,
             self._arm_indices,
             p.POSITION_CONTROL,
-            targetPositions=np.asarray(q, dtype=float).tolist(),
-            targetVelocities=self._resting if qd is None else np.asarray(qd, dtype=float).tolist(),
+            targetPositions=_floats(q),
+            targetVelocities=self._resting if qd is None else _floats(qd),
             forces=self._arm_forces,
             positionGains=self._position_gains,
             velocityGains=self._velocity_gains,
@@ -273,8 +278,12 @@ class PhysicsWorld:
 
     def arm_positions(self) -> FloatArray:
         """Positions of the arm joints."""
+        return np.array(self.arm_position_list())
+
+    def arm_position_list(self) -> list[float]:
+        """Positions of the arm joints, as a list (read every tick)."""
         states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
-        return np.array([s[0] for s in states])
+        return [s[0] for s in states]
 
     def finger_speed(self) -> float:
         """Fastest finger joint speed (m/s)."""

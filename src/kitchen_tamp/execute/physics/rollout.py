@@ -137,13 +137,15 @@ class Rollout:
                               f"({contact.normal_force:.2f} N)")
 
     def watch_tracking(
-        self, figures: ActionFigures, label: str, commanded: np.ndarray, waypoint: int
+        self, figures: ActionFigures, label: str, commanded: list[float], waypoint: int
     ) -> None:
-        lag = np.abs(self.world.arm_positions() - commanded)
-        error = float(np.max(lag))
+        # seven joints a tick: plain floats (the same IEEE arithmetic as numpy's, without its overhead)
+        positions = self.world.arm_position_list()
+        lag = [abs(now - wanted) for now, wanted in zip(positions, commanded, strict=True)]
+        error = max(lag)
         figures.max_joint_error_rad = max(figures.max_joint_error_rad, error)
         if error > self.tolerances.tracking_rad:
-            joint = self.kitchen.robot.description.arm_joints[int(np.argmax(lag))]
+            joint = self.kitchen.robot.description.arm_joints[lag.index(error)]
             self.problem_once(f"tracking {label}", f"{label}: after waypoint {waypoint} {joint} lags "
                               f"its command by {error:.3f} rad (bound {self.tolerances.tracking_rad} rad)")
 
@@ -162,16 +164,19 @@ class Rollout:
             times = np.arange(1, count + 1, dtype=float) * world.settings.time_step
             qs, qds, widths = stroke.sample(times)
             intervals, fractions, _ = stroke.locate(times)
-            for tick in range(count):
-                interval = stroke.first + int(intervals[tick])
-                state = track.state_at(interval, float(fractions[tick]))
+            intervals = stroke.first + intervals
+            states = track.states_at(intervals, fractions)
+            # the simulator takes Python floats: converted once a stroke, not once a tick
+            ticks = zip(qs.tolist(), qds.tolist(), widths.tolist(), intervals.tolist(), states.tolist(),
+                        strict=True)
+            for tick, (q, qd, width, interval, state) in enumerate(ticks):
                 if self.gripped is not None and track.carried[state] is None:  # the plan lets go here
                     self.measure_slip(figures, label)
                     self.gripped = None
-                world.command_arm(qs[tick], qds[tick])
-                world.command_gripper(float(widths[tick]), press=track.holds(state))
+                world.command_arm(q, qd)
+                world.command_gripper(width, press=track.holds(state))
                 self.step()
-                self.watch_tracking(figures, label, qs[tick], interval)
+                self.watch_tracking(figures, label, q, interval)
                 self.watch_contacts(figures, label, intended)
                 if tick % SLIP_CHECK_TICKS == SLIP_CHECK_TICKS - 1:
                     self.measure_slip(figures, label)
