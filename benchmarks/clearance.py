@@ -26,7 +26,7 @@ from kitchen_tamp.kitchen import KitchenScene, load_kitchen_problem, sample_targ
 from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.clearance import SphereClearance
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from kitchen_tamp.refinement.refine_action import PLANNING_MARGIN
 from kitchen_tamp.world.scene_description import describe_collision_checker
 

@@ -74,7 +74,8 @@ from kitchen_tamp.refinement.motion_backend import (
     MotionSolution,
     SamplingMotionBackend,
 )
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_backend import OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from kitchen_tamp.refinement.refine_action import PLANNING_MARGIN
 from kitchen_tamp.world import PyBulletCollisionChecker
 from kitchen_tamp.world.scene_description import describe_collision_checker

@@ -21,7 +21,8 @@ from kitchen_tamp.kitchen import build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task, load_task
 from kitchen_tamp.refinement import MotionBackend, SamplingMotionBackend, refine_with_sesame
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_backend import OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from kitchen_tamp.shipped_kitchens import default_scene_path
 
 REPO = Path(__file__).resolve().parents[1]

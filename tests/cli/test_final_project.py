@@ -14,7 +14,7 @@ import pytest
 from kitchen_tamp.cli import final_project
 from kitchen_tamp.cli.final_project import main
 from kitchen_tamp.refinement import MotionSolution
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from tests.cli.interrupt import interrupt_once_printed
 from tests.conftest import KitchenRuns
 
@@ -388,12 +388,12 @@ def test_a_kitchen_model_that_does_not_match_the_map_is_a_setup_error(
 def test_no_nonlinear_solver_is_a_setup_error_found_before_planning(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError
+    from kitchen_tamp.motion.trajopt import solver
 
     def no_solver() -> None:
-        raise NoNonlinearSolverError("Drake has neither SNOPT nor IPOPT available")
+        raise solver.NoNonlinearSolverError("Drake has neither SNOPT nor IPOPT available")
 
-    monkeypatch.setattr(final_project, "nonlinear_solver", no_solver)
+    monkeypatch.setattr(solver, "nonlinear_solver", no_solver)
     assert main(["optimizes", "--out", str(tmp_path / "run")]) == 2
     captured = capsys.readouterr()
     assert captured.err.strip().splitlines() == [

@@ -9,7 +9,8 @@ import numpy.typing as npt
 import pytest
 
 from kitchen_tamp.motion import check_path_densely
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_backend import OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from tests.motion.toy_worlds import BoxBallWorld
 
 CENTER, RADIUS = np.array([0.5, 0.5]), 0.15

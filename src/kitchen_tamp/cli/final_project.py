@@ -38,7 +38,7 @@ from kitchen_tamp.execute.run_inputs import RunInputs
 from kitchen_tamp.kitchen import KitchenError, build_kitchen_for_task
 from kitchen_tamp.kitchen.scene.choice import SceneChoice, choose_scene
 from kitchen_tamp.motion import planner_options
-from kitchen_tamp.motion.trajopt.solver import NoNonlinearSolverError, nonlinear_solver
+from kitchen_tamp.motion.geometry.drake_service import DrakeService
 from kitchen_tamp.planning import GroundAction, PlanningInputError, State, Task, load_task, plan
 from kitchen_tamp.refinement import ActionSampleRecord, MotionBackend, SamplingMotionBackend
 from kitchen_tamp.refinement.kitchen_sesame import (
@@ -48,7 +48,7 @@ from kitchen_tamp.refinement.kitchen_sesame import (
     refine_with_sesame,
     sesame_replanner,
 )
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS, OptimizingMotionBackend
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from kitchen_tamp.world import UnknownNameError, WorldError
 
 SYMBOLIC_PLANNER = "bfs"
@@ -84,7 +84,14 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
     if args.mode == "optimizes":
         if args.collision_model == "pybullet":
             raise UsageError("optimizes needs signed distances: use --collision-model spheres or drake")
-        nonlinear_solver()  # raises NoNonlinearSolverError now rather than at the first optimised move
+        from kitchen_tamp.motion.trajopt import solver  # Drake: loaded by a run that optimises
+        from kitchen_tamp.refinement.optimizing_backend import OptimizingMotionBackend
+
+        try:
+            solver.nonlinear_solver()  # now rather than at the first optimised move
+        except solver.NoNonlinearSolverError as error:
+            raise UsageError(f"optimizes needs a nonlinear solver: {error}; use rrt, or a Drake build "
+                             "that has one") from error
         return OptimizingMotionBackend(replace(DEFAULT_SETTINGS, num_waypoints=args.waypoints))
     return SamplingMotionBackend(planner=planner_options()[args.rrt])
 
@@ -92,6 +99,8 @@ def _motion_backend(args: argparse.Namespace) -> MotionBackend:
 def _physics_replanner(mode: str, seed: int) -> Replanner:
     """SeSamE with the run's motion back end (its defaults), for re-plans under physics."""
     if mode == "optimizes":
+        from kitchen_tamp.refinement.optimizing_backend import OptimizingMotionBackend
+
         return sesame_replanner(OptimizingMotionBackend(DEFAULT_SETTINGS), seed)
     return sesame_replanner(SamplingMotionBackend(), seed)
 
@@ -139,6 +148,20 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
     """``rrt`` / ``optimizes``: plan, refine, write the trajectory, judge and render."""
     _check_display(args)
     backend = _motion_backend(args)
+    # Drake behind the sphere model: loaded in a process of its own while the planner starts
+    # (trajectory optimisation and the drake model use Drake in this process anyway)
+    spheres_alone = args.mode == "rrt" and args.collision_model == "spheres"
+    drake = DrakeService() if spheres_alone and DrakeService.available() else None
+    try:
+        return _plan_and_judge(args, started, backend, drake)
+    finally:
+        if drake is not None:
+            drake.close()
+
+
+def _plan_and_judge(
+    args: argparse.Namespace, started: float, backend: MotionBackend, drake: DrakeService | None
+) -> int:
     choice = choose_scene(args.problem, args.scene, Path(args.domain) if args.domain else None)
     problem, domain, scene = choice.problem.absolute(), choice.domain.absolute(), choice.scene.absolute()
     kitchen_map = choice.kitchen_map()
@@ -180,7 +203,8 @@ def run_plan(args: argparse.Namespace, started: float) -> int:
                               samples_per_step=args.samples_per_step, max_samples=args.max_samples)
             options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
             outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample,
-                                         on_accepted=None if followed is None else followed.accepted)
+                                         on_accepted=None if followed is None else followed.accepted,
+                                         drake=drake)
             report.timing["refinement_s"] = time.perf_counter() - clock
             report.bilevel = outcome.report_data()
             refined = outcome.refined
@@ -262,8 +286,6 @@ def _bad_input_line(error: Exception) -> str | None:
     """The one line for an error in the user's input or setup (exit 2); ``None`` for a bug."""
     if isinstance(error, BAD_INPUT_ERRORS):
         return str(error)
-    if isinstance(error, NoNonlinearSolverError):
-        return f"optimizes needs a nonlinear solver: {error}; use rrt, or a Drake build that has one"
     if isinstance(error, UnknownNameError):
         return f"the kitchen's model files do not match its kitchen map: {error}"
     if isinstance(error, WorldError):

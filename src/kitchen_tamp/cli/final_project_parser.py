@@ -11,7 +11,7 @@ from pathlib import Path
 from kitchen_tamp.cli import CommandLineParser
 from kitchen_tamp.motion import MOTION_PLANNERS, planner_options
 from kitchen_tamp.refinement.kitchen_sesame import KITCHEN_BUDGETS
-from kitchen_tamp.refinement.optimizing_backend import DEFAULT_SETTINGS
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 from kitchen_tamp.refinement.planning_checkers import COLLISION_MODELS, DEFAULT_COLLISION_MODEL
 from kitchen_tamp.shipped_kitchens import DEFAULT_PROBLEM
 

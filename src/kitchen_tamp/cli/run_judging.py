@@ -15,7 +15,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 import numpy as np
 
@@ -41,17 +41,15 @@ from kitchen_tamp.execute.physics.background_physics import (
 from kitchen_tamp.execute.physics.execution import report_seconds
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.render.background_pictures import PendingPictures, PictureJob
-from kitchen_tamp.execute.render.browser_replay import (
-    HTML_FILE,
-    LiveViewer,
-    RecordedRollout,
-    write_timeline_replay,
-)
+from kitchen_tamp.execute.render.rollout_recording import RecordedRollout
 from kitchen_tamp.execute.run_inputs import RunInputs
 from kitchen_tamp.execute.trajectory_file import check_joint_count
 from kitchen_tamp.kitchen import KitchenMap, KitchenScene, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import KitchenTrajectory
 from kitchen_tamp.planning import Task
+
+if TYPE_CHECKING:  # the browser's page loads Drake, which a run without it never needs
+    from kitchen_tamp.execute.render.browser_replay import LiveViewer
 
 MAX_REPLANS: Final = 2
 """Re-plans under physics a planning run may make before its verdict stands."""
@@ -96,6 +94,8 @@ class RunContext:
 
 
 def start_live_viewer(kitchen: KitchenScene) -> LiveViewer:
+    from kitchen_tamp.execute.render.browser_replay import LiveViewer  # Drake: only where it is seen
+
     live = LiveViewer(kitchen)
     say(f"live viewer (Meshcat) at {live.url} while this program runs")
     return live
@@ -284,6 +284,8 @@ def judge_and_render(context: RunContext) -> int:
 
 
 def _write_html(context: RunContext, timeline: Timeline, rollout: RecordedRollout | None) -> None:
+    from kitchen_tamp.execute.render.browser_replay import HTML_FILE, write_timeline_replay  # Drake
+
     clock = time.perf_counter()
     report, path = context.report, context.out_dir / HTML_FILE
     if rollout is not None and rollout.captured:  # the motion the simulator executed

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Final
+from typing import TYPE_CHECKING, Final
 
 import numpy as np
 
@@ -41,6 +41,9 @@ from kitchen_tamp.refinement.motion_backend import MotionBackend
 from kitchen_tamp.refinement.planning_checkers import DEFAULT_COLLISION_MODEL, PlanningCheckers
 from kitchen_tamp.refinement.refine_action import ActionSampleRecord, RefinedKitchenPlan, refine_action
 from kitchen_tamp.world import SceneState
+
+if TYPE_CHECKING:
+    from kitchen_tamp.motion.geometry.drake_service import DrakeService
 
 
 @dataclass(frozen=True, eq=False)
@@ -89,6 +92,8 @@ class KitchenSampler:
     collision_model: str = DEFAULT_COLLISION_MODEL
     feedback: FailureFeedback | None = None
     """Turns skill failures into facts for the abstract search; None: failures teach nothing."""
+    drake: DrakeService | None = None
+    """Where Drake's models behind the sphere model are asked (None: in this process)."""
     records: dict[int, ActionSampleRecord] = field(default_factory=dict)
     """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
     last_record: ActionSampleRecord | None = None
@@ -98,7 +103,7 @@ class KitchenSampler:
     """The planning collision models, built once per world the refinement meets."""
 
     def __post_init__(self) -> None:
-        self.checkers = PlanningCheckers(self.collision_model)
+        self.checkers = PlanningCheckers(self.collision_model, drake=self.drake)
 
     def atoms_of(self, state: KitchenState) -> frozenset[Atom]:
         """Ψ(x): the atoms true in the snapshot."""
@@ -197,13 +202,15 @@ def refine_with_sesame(
     options: RefinementOptions = DEFAULT_OPTIONS,
     on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
     on_accepted: Callable[[int, int, ActionTrajectory], None] | None = None,
+    drake: DrakeService | None = None,
 ) -> SesameRefinement:
     """Run SeSamE from the scene as it is; on success the scene is left in the final state.
     ``on_sample(event, record)`` follows every sample; ``on_accepted(plan, step, trajectory)``
     every sample accepted as step ``step`` of abstract plan ``plan`` (a later one with the same
-    or an earlier step, or another plan, takes it back)."""
+    or an earlier step, or another plan, takes it back). ``drake``: where Drake's models behind the
+    sphere model are asked (None: in this process)."""
     teacher = FailureFeedback(kitchen, task, np.random.default_rng(seed)) if options.feedback else None
-    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher)
+    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher, drake)
     initial = KitchenState.of(kitchen)
     problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
 

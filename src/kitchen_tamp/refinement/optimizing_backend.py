@@ -36,7 +36,8 @@ from kitchen_tamp.joint_spacing import JUDGE_RESOLUTION_RAD
 from kitchen_tamp.motion import ConfigurationSpace, InvalidMotionQueryError, check_path_densely, path_length
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.trajopt.program import Clearance, TrajectoryOptimizationSettings, one_at_a_time
+from kitchen_tamp.motion.trajopt.program import Clearance, one_at_a_time
+from kitchen_tamp.motion.trajopt.settings import TrajectoryOptimizationSettings
 from kitchen_tamp.motion.trajopt.solver import nonlinear_solver, optimize_trajectory
 from kitchen_tamp.refinement.motion_backend import (
     BoundedCollisionChecker,
@@ -44,25 +45,7 @@ from kitchen_tamp.refinement.motion_backend import (
     MotionSolution,
     SamplingMotionBackend,
 )
-
-DEFAULT_SETTINGS = TrajectoryOptimizationSettings(
-    num_waypoints=20,
-    max_step=0.25,
-    collision_margin=0.005,
-    max_iterations=200,
-    optimality_tolerance=1e-2,
-    feasibility_tolerance=1e-5,
-    samples_between_waypoints=4,
-)
-"""20 waypoints (more when a joint must travel further than 0.25 rad a step), and 5 mm of clearance
-at every waypoint and at four points between each two: the collision points are as dense as with
-the original project's 50 waypoints and one midpoint. SNOPT's time grows much faster than the
-waypoint count (its quasi-Newton Hessian learns the path's curvature one waypoint joint at a
-time), and an optimality tolerance of 1e-2 (SNOPT's default is 1e-6) stops it once the path is
-within a fraction of a percent of its best length: on the hard moves of problem.pddl and
-problem_hard.pddl (seed 0), 0.11-0.15 CPU s per move instead of 0.3-3.3 s with 50 waypoints
-and 1e-3, with paths 0.1-0.9% longer. At most 200 major iterations."""
-
+from kitchen_tamp.refinement.optimizing_settings import DEFAULT_SETTINGS
 
 Attempt = tuple[bool, TrajectoryOptimizationSettings, str]
 """One attempt of a move: (starts from the reference path, settings, clearance model)."""

@@ -18,7 +18,9 @@ elsewhere but nothing else moved): `PlanningCheckers` builds each model once per
 world and margin and hands out the same one again. The world is everything a
 model reads of the scene description but the arm's joint positions (which every
 query sets), so a reused model gives the verdicts a new one would. Drake's model
-is built only when the spheres first defer to it (`DeferredDrakeChecker`).
+is built only when the spheres first defer to it (`DeferredDrakeChecker`), and with a
+`DrakeService` (a planning run's) it is built and asked in the service's process,
+which loaded Drake while the run started, so that the run itself never loads it.
 """
 
 from __future__ import annotations
@@ -42,6 +44,7 @@ from kitchen_tamp.world.scene_description import SceneDescription, describe_coll
 
 if TYPE_CHECKING:  # the real imports load Drake and numba, which a run may not need yet
     from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+    from kitchen_tamp.motion.geometry.drake_service import DrakeService, RemoteDrakeModel
     from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
 
 COLLISION_MODELS = MappingProxyType(
@@ -89,14 +92,20 @@ def world_key(description: SceneDescription) -> bytes:
 
 class DeferredDrakeChecker:
     """Drake's model of a scene, built on the first question asked of it (the sphere model in
-    front of it answers most moves alone)."""
+    front of it answers most moves alone); with a `DrakeService`, validity is asked of the
+    service's model (the other questions, which only trajectory optimisation asks, of a model
+    built here)."""
 
-    def __init__(self, description: SceneDescription, margin: float) -> None:
+    def __init__(
+        self, description: SceneDescription, margin: float, service: DrakeService | None = None
+    ) -> None:
         self.margin = float(margin)
         self.lower: JointConfiguration = np.array(description.arm_lower, dtype=float)
         self.upper: JointConfiguration = np.array(description.arm_upper, dtype=float)
-        self._description: SceneDescription | None = description
+        self._description: SceneDescription = description
         self._model: DrakeCollisionChecker | None = None
+        self._service = service
+        self._remote: RemoteDrakeModel | None = None
 
     @property
     def built(self) -> bool:
@@ -109,13 +118,15 @@ class DeferredDrakeChecker:
         if self._model is None:
             from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 
-            assert self._description is not None
             self._model = DrakeCollisionChecker(self._description, margin=self.margin)
-            self._description = None
         return self._model
 
     def is_valid(self, qs: JointConfigurations) -> ValidityMask:
-        return self.model.is_valid(qs)
+        if self._service is None or self._model is not None:
+            return self.model.is_valid(qs)
+        if self._remote is None:
+            self._remote = self._service.model(self._description, self.margin)
+        return self._remote.is_valid(qs)
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         return self.model.segment_valid(q0, q1)
@@ -131,7 +142,10 @@ class PlanningCheckers:
     """The planning collision models of one refinement run, each built once per world and margin
     (see the module's docstring); ``model`` is a name of ``COLLISION_MODELS``."""
 
-    def __init__(self, model: str = DEFAULT_COLLISION_MODEL, remembered: int = REMEMBERED_WORLDS) -> None:
+    def __init__(
+        self, model: str = DEFAULT_COLLISION_MODEL, remembered: int = REMEMBERED_WORLDS,
+        drake: DrakeService | None = None,
+    ) -> None:
         if model not in COLLISION_MODELS:
             choices = ", ".join(COLLISION_MODELS)
             raise ValueError(f"unknown collision model {model!r}; choose one of {choices}")
@@ -139,6 +153,8 @@ class PlanningCheckers:
         self.remembered = remembered
         self.built = 0
         """Models built so far (a reused one is not counted again)."""
+        self.drake = drake
+        """Where Drake's models behind the spheres are asked (None: in this process)."""
         self._models: OrderedDict[tuple[bytes, float], BoundedCollisionChecker] = OrderedDict()
 
     def checker(self, kitchen: KitchenScene, targets: SkillTargets, margin: float) -> BoundedCollisionChecker:
@@ -182,4 +198,5 @@ class PlanningCheckers:
         from kitchen_tamp.motion.geometry.spheres.screening import SphereScreenedChecker
 
         spheres: SphereCollisionChecker = SphereCollisionChecker(description, margin=margin)
-        return SphereScreenedChecker(spheres, DeferredDrakeChecker(description, margin), exact_is_bare=True)
+        exact = DeferredDrakeChecker(description, margin, self.drake)
+        return SphereScreenedChecker(spheres, exact, exact_is_bare=True)

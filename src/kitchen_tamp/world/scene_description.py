@@ -49,6 +49,18 @@ class BodyDescription:
     joint_positions: Mapping[str, float]
     """Every movable joint by name."""
 
+    def __reduce__(self) -> tuple[object, ...]:
+        """Pickles ``joint_positions`` as a plain dict (a mapping proxy does not pickle; a model may
+        be built in another process), read-only again when loaded."""
+        return _loaded_body, (self.name, self.urdf_path, self.base_link, self.world_from_base,
+                              dict(self.joint_positions))
+
+
+def _loaded_body(
+    name: str, urdf_path: str, base_link: str, world_from_base: FloatArray, joint_positions: dict[str, float]
+) -> BodyDescription:
+    return BodyDescription(name, urdf_path, base_link, world_from_base, MappingProxyType(joint_positions))
+
 
 @dataclass(frozen=True, eq=False)
 class AttachmentDescription:

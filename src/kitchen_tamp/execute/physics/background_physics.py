@@ -27,7 +27,7 @@ from kitchen_tamp.execute.from_parent import next_from_parent
 from kitchen_tamp.execute.physics.execution import JudgedPair, execute_under_physics
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
-from kitchen_tamp.execute.render.browser_replay import RecordedRollout, RolloutRecorder
+from kitchen_tamp.execute.render.rollout_recording import RecordedRollout, RolloutRecorder
 from kitchen_tamp.execute.verification import JudgedStep
 from kitchen_tamp.kitchen import KitchenMap
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory

@@ -32,6 +32,7 @@ from pydrake.solvers import MathematicalProgram
 from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace, InvalidMotionQueryError
 from kitchen_tamp.motion.joint_path import JointPath, resample_path
+from kitchen_tamp.motion.trajopt.settings import TrajectoryOptimizationSettings
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -40,38 +41,6 @@ SignedDistanceFunction = Callable[[JointConfiguration], tuple[float, JointConfig
 Clearance = Callable[[JointConfigurations], tuple[FloatArray, FloatArray]]
 """qs (M, d) -> (clearance of each row (M,), negative in collision, and its gradients (M, d)): a
 signed distance, or any smooth stand-in that is at least the margin only when the margin is kept."""
-
-
-@dataclass(frozen=True)
-class TrajectoryOptimizationSettings:
-    """Shape and constraints of the program (radians, and the signed distance's units)."""
-
-    num_waypoints: int = 50
-    max_step: float = 0.1
-    collision_margin: float = 0.01
-    max_iterations: int = 1000
-    optimality_tolerance: float | None = None
-    """Solver's optimality tolerance (SNOPT "Major optimality tolerance", IPOPT "tol");
-    None keeps the solver's default."""
-    feasibility_tolerance: float | None = None
-    """SNOPT's "Major feasibility tolerance" (IPOPT "constr_viol_tol"); None keeps the default."""
-    samples_between_waypoints: int = 1
-    """Extra collision constraints on each step, at evenly spaced points between two waypoints:
-    the straight segment between waypoints is what gets executed and verified."""
-    waypoints_per_constraint: int = 10
-    """Steps whose collision points one constraint (one batched clearance call) covers."""
-
-    def __post_init__(self) -> None:
-        if self.num_waypoints < 2:
-            raise ValueError(f"num_waypoints must be at least 2, got {self.num_waypoints}")
-        if self.max_step <= 0.0:
-            raise ValueError(f"max_step must be positive, got {self.max_step}")
-        if self.max_iterations < 1:
-            raise ValueError(f"max_iterations must be at least 1, got {self.max_iterations}")
-        if self.samples_between_waypoints < 0:
-            raise ValueError(f"samples_between_waypoints must be >= 0, got {self.samples_between_waypoints}")
-        if self.waypoints_per_constraint < 1:
-            raise ValueError(f"waypoints_per_constraint must be >= 1, got {self.waypoints_per_constraint}")
 
 
 def one_at_a_time(signed_distance: SignedDistanceFunction) -> Clearance:

@@ -18,12 +18,8 @@ from pydrake.solvers import (
 
 from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.trajopt.program import (
-    Clearance,
-    TrajectoryOptimizationSettings,
-    TrajectoryProgram,
-    build_trajectory_program,
-)
+from kitchen_tamp.motion.trajopt.program import Clearance, TrajectoryProgram, build_trajectory_program
+from kitchen_tamp.motion.trajopt.settings import TrajectoryOptimizationSettings
 
 
 class NoNonlinearSolverError(Exception):
