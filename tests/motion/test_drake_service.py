@@ -47,7 +47,7 @@ def test_a_scene_drake_cannot_load_is_an_error_where_it_is_asked(kitchen: Kitche
     service = DrakeService()
     try:
         model = service.model(broken, 0.0)
-        with pytest.raises(DrakeServiceError, match="gone.urdf"):
+        with pytest.raises(DrakeServiceError, match=r"gone\.urdf"):
             model.is_valid(np.zeros((1, len(description.arm_lower))))
         good = service.model(description, 0.0)  # the service still answers
         assert good.is_valid(kitchen.home[None]).shape == (1,)
@@ -63,5 +63,6 @@ def test_a_planning_run_with_spheres_never_loads_drake_itself(tmp_path: Path) ->
         f"code = main(['rrt', '--no-video', '--no-physics', '--out', {str(tmp_path / 'run')!r}])\n"
         "print('drake loaded' if 'pydrake' in sys.modules else 'drake not loaded', code)\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], cwd=REPO, capture_output=True, text=True, check=True)
+    done = subprocess.run([sys.executable, "-c", script], cwd=REPO, capture_output=True, text=True,
+                          check=True)
     assert done.stdout.strip().splitlines()[-1] == "drake not loaded 0"
