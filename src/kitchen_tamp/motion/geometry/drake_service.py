@@ -30,6 +30,7 @@ from kitchen_tamp.motion.collision_checker import JointConfigurations, ValidityM
 
 if TYPE_CHECKING:
     from kitchen_tamp.motion.geometry.described_scene import DescribedScene
+    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 
 PARENT_CHECK_S: Final = 1.0
 """How often (s) the waiting service checks that the planner's process still runs."""
@@ -51,12 +52,12 @@ def _next_request(connection: Connection) -> Any:
 def _serve(connection: Connection, planner_end: Connection) -> None:
     """The service: load Drake, then answer ``("build", key, scene, margin)`` (no answer) and
     ``("is_valid", key, configurations)`` (the verdicts, or a traceback) until ``None`` or EOF."""
-    planner_end.close()  # so that the pipe ends with the planner
-    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker  # loads Drake, now
-
     scenes: dict[int, tuple[DescribedScene, float]] = {}
     models: dict[int, DrakeCollisionChecker] = {}
     try:
+        planner_end.close()  # so that the pipe ends with the planner
+        from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker  # loads Drake, now
+
         while (request := _next_request(connection)) is not None:
             kind, key, *arguments = request
             if kind == "build":
@@ -70,7 +71,7 @@ def _serve(connection: Connection, planner_end: Connection) -> None:
                 connection.send(models[key].is_valid(arguments[0]))
             except Exception:  # the planner raises it
                 connection.send(traceback.format_exc())
-    except EOFError:
+    except (EOFError, KeyboardInterrupt):  # the planner is gone, or Ctrl-C (the planner says so)
         pass
     finally:
         connection.close()
