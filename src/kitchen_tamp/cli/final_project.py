@@ -186,6 +186,10 @@ def _plan_and_judge(
                 progress(event, record)
                 if live is not None:
                     live.update()
+                accepted = record.trajectory if record is not None and event.succeeded else None
+                if followed is not None and accepted is not None and event.plan_index is not None:
+                    assert event.step_index is not None
+                    followed.accepted(event.plan_index, event.step_index, accepted)
 
             report.timing["startup_s"] = time.perf_counter() - started
             clock = time.perf_counter()
@@ -201,10 +205,8 @@ def _plan_and_judge(
             clock = time.perf_counter()
             budgets = replace(KITCHEN_BUDGETS, max_plans=args.max_plans,
                               samples_per_step=args.samples_per_step, max_samples=args.max_samples)
-            options = RefinementOptions(args.collision_model, feedback=not args.no_feedback)
-            outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample,
-                                         on_accepted=None if followed is None else followed.accepted,
-                                         drake=drake)
+            options = RefinementOptions(args.collision_model, feedback=not args.no_feedback, drake=drake)
+            outcome = refine_with_sesame(kitchen, task, backend, args.seed, budgets, options, on_sample)
             report.timing["refinement_s"] = time.perf_counter() - clock
             report.bilevel = outcome.report_data()
             refined = outcome.refined

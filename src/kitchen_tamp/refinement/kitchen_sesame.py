@@ -97,8 +97,6 @@ class KitchenSampler:
     records: dict[int, ActionSampleRecord] = field(default_factory=dict)
     """The refinement record of every trajectory handed out, by ``id`` of its action trajectory."""
     last_record: ActionSampleRecord | None = None
-    last_trajectory: ActionTrajectory | None = None
-    """The last sample's trajectory (None when it failed)."""
     checkers: PlanningCheckers = field(init=False)
     """The planning collision models, built once per world the refinement meets."""
 
@@ -118,7 +116,6 @@ class KitchenSampler:
     ) -> Trajectory[KitchenState, ActionTrajectory]:
         state.restore(self.kitchen)
         action = transition.action
-        self.last_trajectory = None
         trajectory, record = refine_action(
             self.kitchen, 0, action, self.backend, rng, checkers=self.checkers
         )
@@ -134,7 +131,6 @@ class KitchenSampler:
         if problem is not None:
             raise SkillSamplingFailure(problem, None)
         self.records[id(trajectory)] = record
-        self.last_trajectory = trajectory
         return Trajectory((state, KitchenState.of(self.kitchen)), (trajectory,))
 
 
@@ -188,6 +184,8 @@ class RefinementOptions:
     feedback: bool = True
     """Confirmed skill failures teach the abstract search (obstructions, places out of reach);
     off, only the refinement of each plan reacts to them (resampling, backtracking)."""
+    drake: DrakeService | None = None
+    """Where Drake's models behind the sphere model are asked (None: in this process)."""
 
 
 DEFAULT_OPTIONS: Final = RefinementOptions()
@@ -201,26 +199,19 @@ def refine_with_sesame(
     budgets: SesameBudgets = KITCHEN_BUDGETS,
     options: RefinementOptions = DEFAULT_OPTIONS,
     on_sample: Callable[[SampleEvent[State, GroundAction], ActionSampleRecord | None], None] | None = None,
-    on_accepted: Callable[[int, int, ActionTrajectory], None] | None = None,
-    drake: DrakeService | None = None,
 ) -> SesameRefinement:
     """Run SeSamE from the scene as it is; on success the scene is left in the final state.
-    ``on_sample(event, record)`` follows every sample; ``on_accepted(plan, step, trajectory)``
-    every sample accepted as step ``step`` of abstract plan ``plan`` (a later one with the same
-    or an earlier step, or another plan, takes it back). ``drake``: where Drake's models behind the
-    sphere model are asked (None: in this process)."""
+    ``on_sample(event, record)`` follows every sample (a sample accepted as a step of an abstract
+    plan, ``event.succeeded``, has its trajectory in ``record``; a later one with the same or an
+    earlier step, or of another plan, takes it back)."""
     teacher = FailureFeedback(kitchen, task, np.random.default_rng(seed)) if options.feedback else None
-    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher, drake)
+    sampler = KitchenSampler(kitchen, task, backend, options.collision_model, teacher, options.drake)
     initial = KitchenState.of(kitchen)
     problem = relational_problem(task, initial, sampler.atoms_of, lambda action: sampler)
 
     def report(event: SampleEvent[State, GroundAction]) -> None:
         if on_sample is not None:
             on_sample(event, sampler.last_record)
-        accepted = sampler.last_trajectory if event.succeeded else None
-        if on_accepted is not None and accepted is not None and event.plan_index is not None:
-            assert event.step_index is not None
-            on_accepted(event.plan_index, event.step_index, accepted)
 
     result = sesame(problem, budgets, seed=seed, on_sample=report)
     if result.plan is None:

@@ -46,6 +46,9 @@ class ActionSampleRecord:
     skill_failure: SkillFailure | None = None
     """The skill's failure when it found no targets (kind, obstructing objects, region): for
     the planner, not the report."""
+    trajectory: ActionTrajectory | None = None
+    """The sample's trajectory (None when it failed): for the planner and whoever follows it, not
+    the report."""
 
     def figures(self) -> dict[str, object]:
         """The record as report data, without wall-clock figures."""
@@ -130,6 +133,7 @@ def refine_action(
             waypoints=0 if trajectory is None else trajectory.waypoint_count,
             rejections=() if rejection is None else (rejection,),
             seconds=seconds,
+            trajectory=trajectory,
         )
 
     if solution.path is None:

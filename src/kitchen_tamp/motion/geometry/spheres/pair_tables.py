@@ -32,7 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.kernels.loading import sphere_kernels
-from kitchen_tamp.motion.geometry.spheres.kinematics import JointAxes, TreeLayout
+from kitchen_tamp.motion.geometry.spheres.kinematics import JointAxes
 from kitchen_tamp.motion.geometry.spheres.scene import SphereScene
 from kitchen_tamp.motion.geometry.spheres.stored_spheres import load_pair_cells, save_pair_cells
 
@@ -133,7 +133,6 @@ def _reaches(
 
 def _cache_key(
     scene: SphereScene,
-    layout: TreeLayout,
     near: int,
     far: int,
     variables: tuple[int, int],
@@ -144,6 +143,7 @@ def _cache_key(
     """The pair's spheres and the joints from one link to the other (not where the robot stands nor
     its other joints: they do not move one link relative to the other)."""
     digest = hashlib.sha256(PAIR_TABLE_VERSION.encode())
+    layout = scene.tree.flat_layout()
     link, stop = scene.groups[far].robot_link, scene.groups[near].robot_link
     while link not in (stop, -1):
         for array in (layout.origins[link], layout.held[link], layout.kinds[link], layout.axes[link]):
@@ -204,7 +204,7 @@ def pair_tables(scene: SphereScene, arguments: tuple[Any, ...], margin: float) -
     with the kernel ``arguments`` laid out without tables (`sphere_kernel_layout.kernel_arguments`)."""
     lower, upper = np.asarray(arguments[0], dtype=float), np.asarray(arguments[1], dtype=float)
     middle = (lower + upper) / 2.0
-    at_middle, layout = scene.tree.joint_axes(middle[None]), scene.tree.flat_layout()
+    at_middle = scene.tree.joint_axes(middle[None])
     pair_index = np.full(len(scene.group_pairs), -1, dtype=np.int64)
     variables: list[tuple[int, int]] = []
     lows: list[FloatArray] = []
@@ -225,7 +225,7 @@ def pair_tables(scene: SphereScene, arguments: tuple[Any, ...], margin: float) -
             continue
         step = span / count
         low = lower[[first, second]]
-        key = _cache_key(scene, layout, near, far, (first, second), np.stack([low, span]), margin, step)
+        key = _cache_key(scene, near, far, (first, second), np.stack([low, span]), margin, step)
         proved = _stored_cells(key)
         if proved is None or len(proved) != int(np.prod(count)):
             slack = float(np.dot(reaches, step)) / 2.0 + _BOUNDARY_SLACK
