@@ -50,6 +50,10 @@ _END: Final = None
 """Put on the queue after the last step."""
 
 
+class FollowingError(RuntimeError):
+    """Judging in the child failed (a bug: the message holds its traceback)."""
+
+
 @dataclass(frozen=True, eq=False)
 class JudgedWhilePlanning:
     """The kinematic judge's verdict on the followed steps, and the seconds the child spent
@@ -190,7 +194,7 @@ class FollowingJudge:
                 self._stop_child()
             return message
         self.cancel()
-        raise PhysicsError(f"judging the plan as it was refined failed: {message}")
+        raise FollowingError(f"judging the plan as it was refined failed: {message}")
 
     def physics(self) -> PhysicsOutcome:
         """After `verdict`: physics' outcome on the same steps (of a judge given a physics job)."""
