@@ -3,6 +3,10 @@ finished file, also when steps are taken back; a file that is not what was follo
 
 from __future__ import annotations
 
+import os
+import time
+from pathlib import Path
+
 import pytest
 
 from kitchen_tamp.execute import Verification, execute_under_physics, judged_pairs
@@ -94,3 +98,28 @@ def test_following_gives_up_after_too_many_starts(kitchen_task: Task, refined: K
     for index in range(1, len(refined.steps)):
         judge.accepted(MAX_STARTS, index, refined.steps[index])
     assert judge.verdict(refined) is None
+
+
+def _descendants(pid: int) -> set[int]:
+    """The processes under ``pid`` (Linux's /proc)."""
+    found, todo = set(), [pid]
+    while todo:
+        parent = todo.pop()
+        for task in Path(f"/proc/{parent}/task").glob("*"):
+            children = {int(child) for child in (task / "children").read_text().split()}
+            found |= children
+            todo.extend(children)
+    return found
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").is_dir(), reason="reads the process tree from Linux's /proc")
+def test_a_stopped_child_takes_physics_child_with_it(kitchen_task: Task, refined: KitchenTrajectory) -> None:
+    judge = _judge(kitchen_task)
+    judge.accepted(0, 0, refined.steps[0])
+    deadline = time.monotonic() + 30.0
+    while len(first := _descendants(os.getpid())) < 2 and time.monotonic() < deadline:
+        time.sleep(0.05)  # the judge's child starts physics' own
+    assert len(first) >= 2
+    judge.accepted(1, 0, refined.steps[0])  # another plan: that child is stopped
+    assert not any(Path(f"/proc/{pid}").exists() for pid in first)
+    judge.cancel()

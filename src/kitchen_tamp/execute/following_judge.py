@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import multiprocessing
 import multiprocessing.queues
+import os
 import pickle
+import signal
 import time
 import traceback
 from dataclasses import dataclass
@@ -73,6 +75,13 @@ def _follow(
     """The child: judge each step as it comes and hand it to physics; once the last came, send
     the kinematic verdict, then physics' outcome (or a traceback in place of either)."""
     physics: PendingPhysics | None = None
+
+    def stopped(*_: object) -> None:  # by the planner (a step taken back): physics' child goes too
+        if physics is not None:
+            physics.cancel()
+        os._exit(0)
+
+    signal.signal(signal.SIGTERM, stopped)
     try:
         physics = None if physics_job is None else PendingPhysics(physics_job)
         seconds = 0.0
