@@ -32,7 +32,6 @@ from typing import Final
 
 import numpy as np
 
-from kitchen_tamp.execute.from_parent import next_from_parent
 from kitchen_tamp.execute.physics.background_physics import (
     PendingPhysics,
     PhysicsError,
@@ -40,6 +39,7 @@ from kitchen_tamp.execute.physics.background_physics import (
     PhysicsOutcome,
 )
 from kitchen_tamp.execute.verification import TrajectoryJudge, Verification
+from kitchen_tamp.forked_children import can_fork, next_from_parent
 from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import Task
@@ -156,7 +156,7 @@ class FollowingJudge:
     @staticmethod
     def available() -> bool:
         """Whether this platform forks (following needs it)."""
-        return "fork" in multiprocessing.get_all_start_methods()
+        return can_fork()
 
     @property
     def following(self) -> bool:

@@ -23,12 +23,12 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
 
-from kitchen_tamp.execute.from_parent import next_from_parent
 from kitchen_tamp.execute.physics.execution import JudgedPair, execute_under_physics
 from kitchen_tamp.execute.physics.replanning import Replanner
 from kitchen_tamp.execute.physics.verdict import PhysicsExecution
 from kitchen_tamp.execute.render.rollout_recording import RecordedRollout, RolloutRecorder
 from kitchen_tamp.execute.verification import JudgedStep
+from kitchen_tamp.forked_children import can_fork, next_from_parent
 from kitchen_tamp.kitchen import KitchenMap
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory
 from kitchen_tamp.planning import Task
@@ -97,7 +97,7 @@ class PendingPhysics:
         self._process: multiprocessing.process.BaseProcess | None = None
         self._receiver: Connection | None = None
         self._steps: multiprocessing.queues.Queue[bytes | None] | None = None
-        if "fork" in multiprocessing.get_all_start_methods():
+        if can_fork():
             context = multiprocessing.get_context("fork")
             self._steps = context.Queue()
             self._steps.cancel_join_thread()  # a child that stopped early (a re-plan) reads no more

@@ -26,8 +26,8 @@ from functools import partial
 from multiprocessing.connection import Connection
 from pathlib import Path
 
-from kitchen_tamp.execute.from_parent import next_from_parent
 from kitchen_tamp.execute.timeline import Timeline
+from kitchen_tamp.forked_children import can_fork, next_from_parent
 from kitchen_tamp.kitchen import KitchenMap, build_kitchen_for_task
 from kitchen_tamp.planning import Task
 
@@ -128,7 +128,7 @@ class PendingPictures:
         self._receiver: Connection | None = None
         self._timelines: multiprocessing.queues.Queue[Timeline] | None = None
         self._timeline: Timeline | None = job.timeline
-        if "fork" in multiprocessing.get_all_start_methods():
+        if can_fork():
             context = multiprocessing.get_context("fork")
             self._receiver, sender = context.Pipe(duplex=False)
             if job.timeline is None:

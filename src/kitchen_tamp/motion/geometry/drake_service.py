@@ -22,31 +22,19 @@ import itertools
 import multiprocessing
 import traceback
 from multiprocessing.connection import Connection
-from typing import TYPE_CHECKING, Any, Final
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from kitchen_tamp.forked_children import PARENT_CHECK_S, can_fork, received_from_parent
 from kitchen_tamp.motion.collision_checker import JointConfigurations, ValidityMask
 
 if TYPE_CHECKING:
     from kitchen_tamp.motion.geometry.described_scene import DescribedScene
     from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 
-PARENT_CHECK_S: Final = 1.0
-"""How often (s) the waiting service checks that the planner's process still runs."""
-
-
 class DrakeServiceError(RuntimeError):
     """The service failed to answer (a bug, or a scene Drake cannot load: the message says which)."""
-
-
-def _next_request(connection: Connection) -> Any:
-    """The next request; raises EOFError when the planner's process is gone."""
-    parent = multiprocessing.parent_process()
-    while not connection.poll(PARENT_CHECK_S):
-        if parent is not None and not parent.is_alive():
-            raise EOFError("the planner's process ended")
-    return connection.recv()
 
 
 def _serve(connection: Connection, planner_end: Connection) -> None:
@@ -58,8 +46,8 @@ def _serve(connection: Connection, planner_end: Connection) -> None:
         planner_end.close()  # so that the pipe ends with the planner
         from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker  # loads Drake, now
 
-        while (request := _next_request(connection)) is not None:
-            kind, key, *arguments = request
+        while (request := received_from_parent(connection)) is not None:
+            kind, key, *arguments = cast(tuple[Any, ...], request)
             if kind == "build":
                 scene, margin = arguments
                 scenes[key] = (scene, margin)
@@ -91,7 +79,7 @@ class DrakeService:
     @staticmethod
     def available() -> bool:
         """Whether this platform forks (the service needs it)."""
-        return "fork" in multiprocessing.get_all_start_methods()
+        return can_fork()
 
     def model(self, scene: DescribedScene, margin: float) -> RemoteDrakeModel:
         """Drake's model of ``scene`` keeping ``margin``, built in the service on its first question."""
