@@ -31,7 +31,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
-from types import MappingProxyType
 
 import numpy as np
 
@@ -47,6 +46,7 @@ from kitchen_tamp.kitchen import (
 )
 from kitchen_tamp.kitchen.trajectory import ActionTrajectory, KitchenTrajectory
 from kitchen_tamp.planning import GroundAction, Task
+from kitchen_tamp.read_only_mappings import read_only
 from kitchen_tamp.world import Pose
 
 
@@ -60,24 +60,14 @@ class StepOutcome:
     held_box: str | None
     openings: Mapping[str, float]
 
-    def __reduce__(self) -> tuple[object, ...]:
-        """Pickles with plain dicts (a mapping proxy does not pickle), read-only again when loaded."""
-        return _loaded_outcome, (self.arguments, dict(self.box_poses), self.held_box, dict(self.openings))
-
-
-def _loaded_outcome(
-    arguments: tuple[str, ...], box_poses: dict[str, Pose], held_box: str | None, openings: dict[str, float]
-) -> StepOutcome:
-    return StepOutcome(arguments, MappingProxyType(box_poses), held_box, MappingProxyType(openings))
-
 
 def step_outcome(kitchen: KitchenScene, arguments: tuple[str, ...]) -> StepOutcome:
     """The scene as it is now, as a ``StepOutcome`` of an action with ``arguments``."""
     return StepOutcome(
         arguments,
-        MappingProxyType({name: body.base_pose() for name, body in kitchen.boxes.items()}),
+        read_only({name: body.base_pose() for name, body in kitchen.boxes.items()}),
         kitchen.held_box(),
-        MappingProxyType({name: kitchen.opening(name) for name in kitchen.map.openables}),
+        read_only({name: kitchen.opening(name) for name in kitchen.map.openables}),
     )
 
 

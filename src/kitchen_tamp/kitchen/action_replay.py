@@ -35,7 +35,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from types import MappingProxyType
 from typing import Final
 
 import numpy as np
@@ -52,6 +51,7 @@ from kitchen_tamp.kitchen.replay_track import Carried, Gripped, SegmentTrack
 from kitchen_tamp.kitchen.robot_range import clipped_to_range, range_problem
 from kitchen_tamp.kitchen.scene.kitchen_scene import KitchenScene
 from kitchen_tamp.kitchen.segment import Segment, SegmentSamples, interpolate_segment
+from kitchen_tamp.read_only_mappings import read_only
 from kitchen_tamp.world import FloatArray, PyBulletCollisionChecker
 
 HANDLE_HOLD_ANGLE: Final = 0.02
@@ -272,7 +272,7 @@ class _Replayer:
         runs[-1].end = len(samples)
         for values in openings.values():
             values.flags.writeable = False
-        track = SegmentTrack(segment, samples, tuple(carried), tuple(gripped), MappingProxyType(openings))
+        track = SegmentTrack(segment, samples, tuple(carried), tuple(gripped), read_only(openings))
         return track, runs
 
     def _check(self, samples: SegmentSamples, openings: Mapping[str, FloatArray], run: _Run) -> bool:

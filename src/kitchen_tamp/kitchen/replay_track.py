@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
 
 import numpy as np
 import numpy.typing as npt
@@ -58,11 +57,6 @@ class SegmentTrack:
     def __len__(self) -> int:
         return len(self.samples)
 
-    def __reduce__(self) -> tuple[object, ...]:
-        """Pickles ``openings`` as a plain dict (a mapping proxy does not pickle), read-only again
-        when loaded."""
-        return _loaded_track, (self.segment, self.samples, self.carried, self.gripped, dict(self.openings))
-
     def holds(self, index: int) -> bool:
         """Whether the fingers hold something (a box or a handle) in state ``index``."""
         return self.carried[index] is not None or self.gripped[index] is not None
@@ -101,12 +95,3 @@ def take(kitchen: KitchenScene, carried: Carried) -> None:
     kitchen.scene.set_base_pose(body, world_from_hand @ carried.hand_from_box)
     kitchen.grasp(carried.box)
 
-
-def _loaded_track(
-    segment: Segment,
-    samples: SegmentSamples,
-    carried: tuple[Carried | None, ...],
-    gripped: tuple[str | None, ...],
-    openings: dict[str, FloatArray],
-) -> SegmentTrack:
-    return SegmentTrack(segment, samples, carried, gripped, MappingProxyType(openings))

@@ -18,10 +18,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from types import MappingProxyType
 
 import numpy as np
 
+from kitchen_tamp.read_only_mappings import read_only
 from kitchen_tamp.world.attachment import Attachment
 from kitchen_tamp.world.collision.checked_pairs import CheckedLinkPair, CheckedPairs
 from kitchen_tamp.world.collision.checker import AllowedContact, PyBulletCollisionChecker
@@ -48,18 +48,6 @@ class BodyDescription:
     """(4, 4): the base link's URDF frame in the world."""
     joint_positions: Mapping[str, float]
     """Every movable joint by name."""
-
-    def __reduce__(self) -> tuple[object, ...]:
-        """Pickles ``joint_positions`` as a plain dict (a mapping proxy does not pickle; a model may
-        be built in another process), read-only again when loaded."""
-        return _loaded_body, (self.name, self.urdf_path, self.base_link, self.world_from_base,
-                              dict(self.joint_positions))
-
-
-def _loaded_body(
-    name: str, urdf_path: str, base_link: str, world_from_base: FloatArray, joint_positions: dict[str, float]
-) -> BodyDescription:
-    return BodyDescription(name, urdf_path, base_link, world_from_base, MappingProxyType(joint_positions))
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,7 +122,7 @@ def describe_scene(
                 urdf_path=str(Path(urdf_paths[body.name]).resolve()),
                 base_link=body.base_link_name,
                 world_from_base=_frozen(body.base_pose().matrix()),
-                joint_positions=MappingProxyType(dict(zip(names, map(float, values), strict=True))),
+                joint_positions=read_only(dict(zip(names, map(float, values), strict=True))),
             )
         )
     attached = scene.attachments if attachments is None else tuple(attachments)
