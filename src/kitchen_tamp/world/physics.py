@@ -276,12 +276,8 @@ class PhysicsWorld:
             p.stepSimulation(physicsClientId=self.client)
         self.time += count * self.settings.time_step
 
-    def arm_positions(self) -> FloatArray:
-        """Positions of the arm joints."""
-        return np.array(self.arm_position_list())
-
-    def arm_position_list(self) -> list[float]:
-        """Positions of the arm joints, as a list (read every tick)."""
+    def arm_positions(self) -> list[float]:
+        """Positions of the arm joints (read every tick: a list, not an array)."""
         states = p.getJointStates(self.robot.body.uid, self._arm_indices, physicsClientId=self.client)
         return [s[0] for s in states]
 

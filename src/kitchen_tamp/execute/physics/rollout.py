@@ -140,7 +140,7 @@ class Rollout:
         self, figures: ActionFigures, label: str, commanded: list[float], waypoint: int
     ) -> None:
         # seven joints a tick: plain floats (the same IEEE arithmetic as numpy's, without its overhead)
-        positions = self.world.arm_position_list()
+        positions = self.world.arm_positions()
         lag = [abs(now - wanted) for now, wanted in zip(positions, commanded, strict=True)]
         error = max(lag)
         figures.max_joint_error_rad = max(figures.max_joint_error_rad, error)
