@@ -14,7 +14,9 @@ import pytest
 
 from kitchen_tamp.planning import landmark_count as landmark_count_module
 from kitchen_tamp.planning import load_task
-from kitchen_tamp.planning.heuristics import INFINITY
+from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
+from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+from kitchen_tamp.planning.search import alternating_greedy
 from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
@@ -42,9 +44,10 @@ def kernel(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> s
 def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expansions: int = 20_000,
             **options: bool) -> SearchResult:
     """gbfs with the evaluator's switch after ``after_work`` (never: 10**18), which hands the search over
-    (the hand-over by CPU time is off)."""
+    (the hand-overs by CPU time are off)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
     monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", INFINITY)
+    monkeypatch.setattr(loading, "STALL_SECONDS", INFINITY)
     monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", INFINITY)
     return alternating_greedy_search(task, SearchBudget(None, expansions), **options)
 
@@ -127,7 +130,7 @@ def test_a_search_hands_over_before_its_evaluation_would_import_numba() -> None:
               "from kitchen_tamp.planning.search import greedy_kernel_loading as loading\n"
               "work = counting.LandmarkEvaluator(RelaxedExploration(task, 'hadd')).work_per_evaluation\n"
               "counting.COMPILED_AFTER_WORK = 3 * work\n"
-              "loading.HANDOVER_AFTER_SECONDS = 1e9\n")
+              "loading.HANDOVER_AFTER_SECONDS = loading.STALL_SECONDS = 1e9\n")
     assert not _numba_imported_by_gbfs("sokoban", "task23.pddl", before)
 
 
@@ -154,3 +157,30 @@ def test_the_hand_over_by_cpu_time_gives_the_same_search(monkeypatch: pytest.Mon
     python = _search(task, 10**18, monkeypatch)
     monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.0)  # at the first evaluation after the root
     assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
+
+
+def test_a_stalled_search_hands_over_with_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
+    task = _load("pegsol", "task13.pddl")
+    python = _search(task, 10**18, monkeypatch)
+    monkeypatch.setattr(loading, "STALL_SECONDS", 0.0)  # stalled at the first evaluation after the root
+    assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
+
+
+def test_a_stall_is_counted_from_the_last_new_best_h(monkeypatch: pytest.MonkeyPatch) -> None:
+    clock = [10.0]
+    monkeypatch.setattr(alternating_greedy.time, "process_time", lambda: clock[0])
+    monkeypatch.setattr(loading, "STALL_SECONDS", 0.01)
+    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.15)
+    evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
+    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
+    clock[0] += 0.009
+    assert not handover.due()
+    handover.progressed()
+    clock[0] += 0.009
+    assert not handover.due()  # 0.018 s into the search, 0.009 s since its last new best h
+    clock[0] += 0.002
+    assert handover.due()
+    handover.ahead_of_time_looked_for = True  # looked for once: only the clock and the evaluator decide now
+    assert not handover.due()
+    clock[0] += 0.15
+    assert handover.due()

@@ -240,6 +240,7 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
         values = _values(evaluation, heuristics)
         if progress.improves(values):
             queues.boost()
+            handover.progressed()
         expanded += 1
         preferred = evaluation.preferred
         for child, index in successors(state):
@@ -253,20 +254,28 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
 class _Handover:
     """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
 
-    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, or sooner when its evaluator's
-    next state would take it to the JIT exploration (``LandmarkEvaluator.compiles_next``), the kernel
-    compiled ahead of time is looked for; without it, the search goes over to numba's JIT kernel when the
-    evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``), which has imported numba
-    already."""
+    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, or ``loading.STALL_SECONDS``
+    without finding a new best h, or sooner when its evaluator's next state would take it to the JIT
+    exploration (``LandmarkEvaluator.compiles_next``), the kernel compiled ahead of time is looked for;
+    without it, the search goes over to numba's JIT kernel when the evaluator has switched to the JIT
+    exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
-        self.due_at = time.process_time() + loading.HANDOVER_AFTER_SECONDS
+        self.last_progress = time.process_time()
+        self.due_at = self.last_progress + loading.HANDOVER_AFTER_SECONDS
         self.ahead_of_time_looked_for = False
 
+    def progressed(self) -> None:
+        """The search found a new best h: a stall is counted from now."""
+        self.last_progress = time.process_time()
+
     def due(self) -> bool:
-        return (self.evaluator.compiled is not None or self.evaluator.compiles_next()
-                or time.process_time() > self.due_at)
+        if self.evaluator.compiled is not None or self.evaluator.compiles_next():
+            return True
+        now = time.process_time()
+        stalled = not self.ahead_of_time_looked_for and now - self.last_progress > loading.STALL_SECONDS
+        return stalled or now > self.due_at
 
     def search(self) -> SearchResult | None:
         """The compiled search's result, or None: no kernel yet (go on in Python)."""

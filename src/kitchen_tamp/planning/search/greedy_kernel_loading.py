@@ -32,6 +32,12 @@ time: about what importing numpy and laying out the arrays cost (0.17-0.25 s, me
 A clock, not a count, decides here, and that keeps runs deterministic: the kernel takes the Python search's
 steps, so the plan and the counts do not depend on when the search hands over."""
 
+STALL_SECONDS = 0.01
+"""CPU seconds of the Python search without a new best h (since it started or last found one) after which
+it hands over before ``HANDOVER_AFTER_SECONDS``: a search that stalls this early is likely to be long, and
+a long one is some fifteen times faster in the kernel (docs/planner.md, "A stalled search hands over
+early")."""
+
 HANDOVER_COST_SECONDS = 0.08
 """What handing over costs in a fresh process, about: numpy's import and the arrays laid out (0.065-0.095 s
 of CPU on a quiet machine, docs/planner.md). A search whose shortest likely run in Python (the root's
