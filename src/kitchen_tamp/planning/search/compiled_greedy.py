@@ -1,11 +1,12 @@
 """The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
 
 ``alternating_greedy``'s lazy search hands a task over to this once it has spent
-long enough in Python (``greedy_kernel_loading.HANDOVER_AFTER_SECONDS`` with the kernel compiled
-ahead of time, else once its evaluator switches to the JIT kernels): the search then
-starts again from the root in the kernel, which takes the same steps as the
-Python search (the same queues, turns, ties, successor order and evaluations)
-and so returns the plan the Python search would, with the same counts. The
+long enough in Python (``greedy_kernel_loading.HANDOVER_AFTER_SECONDS``, or
+``STALL_SECONDS`` without a new best h, with the kernel compiled ahead of time,
+else once its evaluator switches to the JIT kernels): the search then starts
+again from the root in the kernel, which takes the same steps as the Python
+search (the same queues, turns, ties, successor order and evaluations) and so
+returns the plan the Python search would, with the same counts. The
 arrays are laid out here once per task (``CompiledExploration``'s tables).
 Importing this module imports numpy, not numba.
 """
