@@ -1,8 +1,8 @@
 """The compiled lazy greedy search takes the Python search's steps: the same plan after the same counts.
 
-The Python search hands over to the kernel (compiled ahead of time, or numba's JIT) from the first
-state, after some Python work, or never: ``gbfs`` returns the same plan after the same expansions,
-generations and evaluations, and the plan is valid.
+The Python search hands over to a compiled search (the C library, the kernel compiled ahead of time, or
+numba's JIT) from the first state, after some Python work, or never: ``gbfs`` returns the same plan after
+the same expansions, generations and evaluations, and the plan is valid.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_s
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
 from kitchen_tamp.planning.task import Task
 from kitchen_tamp.planning.validation import validate_plan
-from tests.planning.conftest import REPO
+from tests.planning.conftest import REPO, data_task
 
 IPC = REPO / "benchmarks" / "ipc"
 
@@ -31,13 +31,23 @@ def _load(domain: str, problem: str) -> Task:
     return load_task(IPC / domain / problem, IPC / domain / "domain.pddl")
 
 
-@pytest.fixture(params=["ahead of time", "jit"])
+NO_C_SEARCH = "no C search built for this source (make install, with a C compiler)"
+NO_AHEAD_OF_TIME = "no search kernel compiled ahead of time for these sources (make install)"
+
+
+@pytest.fixture(params=["C", "ahead of time", "jit"])
 def kernel(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
-    """Each test runs with the kernel compiled ahead of time (``make install``) and with numba's JIT."""
+    """Each test runs with the search in C and the kernel compiled ahead of time (both built by
+    ``make install``) and with numba's JIT."""
+    if request.param == "C":
+        if loading.native_library() is None:
+            pytest.skip(NO_C_SEARCH)
+        return "C"
+    monkeypatch.setattr(loading, "native_library", lambda: None)
     if request.param == "jit":
         monkeypatch.setattr(loading, "ahead_of_time_kernel", lambda: None)
     elif loading.ahead_of_time_kernel() is None:
-        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+        pytest.skip(NO_AHEAD_OF_TIME)
     return str(request.param)
 
 
@@ -46,6 +56,7 @@ def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expans
     """gbfs with the evaluator's switch after ``after_work`` (never: 10**18), which hands the search over
     (the hand-overs by CPU time are off)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
+    monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", INFINITY)
     monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", INFINITY)
     monkeypatch.setattr(loading, "STALL_SECONDS", INFINITY)
     monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", INFINITY)
@@ -100,43 +111,66 @@ def test_the_kernel_stops_at_the_expansion_budget(kernel: str, monkeypatch: pyte
     assert (compiled.generated, compiled.evaluated) == (python.generated, python.evaluated)
 
 
-def _numba_imported_by_gbfs(domain: str, problem: str, before_search: str = "") -> bool:
+def test_the_kernel_proves_a_task_unsolvable_as_python_does(kernel: str,
+                                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    task = data_task("delivery_unsolvable.pddl", "delivery_domain.pddl")
+    python = _search(task, 10**18, monkeypatch)
+    compiled = _search(task, -1, monkeypatch)
+    assert python.status == "unsolvable" and python.expanded > 0
+    assert _counts(compiled) == _counts(python)
+    assert compiled.message == python.message
+
+
+def _imported_by_gbfs(module: str, domain: str, problem: str, before_search: str = "") -> bool:
     code = ("import sys\n"
             "from kitchen_tamp.planning import load_task, plan\n"
+            "from kitchen_tamp.planning.search import greedy_kernel_loading as loading\n"
             f"task = load_task({str(IPC / domain / problem)!r}, {str(IPC / domain / 'domain.pddl')!r})\n"
             f"{before_search}"
             "assert plan(task, 'gbfs').solved\n"
-            "print('numba' in sys.modules)\n")
+            f"print({module!r} in sys.modules)\n")
     output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return output.stdout.strip() == "True"
 
 
 def test_a_small_task_does_not_import_numba() -> None:
-    assert not _numba_imported_by_gbfs("sokoban", "task01.pddl")
+    assert not _imported_by_gbfs("numba", "sokoban", "task01.pddl")
+
+
+def test_with_the_c_search_a_large_search_imports_neither_numpy_nor_numba() -> None:
+    if loading.native_library() is None:
+        pytest.skip(NO_C_SEARCH)
+    assert not _imported_by_gbfs("numpy", "sokoban", "task23.pddl")
+    assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl")
 
 
 def test_with_the_kernel_compiled_ahead_of_time_a_large_search_does_not_import_numba() -> None:
     if loading.ahead_of_time_kernel() is None:
-        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
-    assert not _numba_imported_by_gbfs("sokoban", "task23.pddl")
+        pytest.skip(NO_AHEAD_OF_TIME)
+    without_c = "loading.native_library = lambda: None\n"
+    assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl", without_c)
 
 
-def test_a_search_hands_over_before_its_evaluation_would_import_numba() -> None:
-    if loading.ahead_of_time_kernel() is None:
-        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+@pytest.mark.parametrize("c_search", [True, False])
+def test_a_search_hands_over_before_its_evaluation_would_import_numba(c_search: bool) -> None:
+    if c_search and loading.native_library() is None:
+        pytest.skip(NO_C_SEARCH)
+    if not c_search and loading.ahead_of_time_kernel() is None:
+        pytest.skip(NO_AHEAD_OF_TIME)
     # the evaluator's work would take it to the compiled exploration at its fourth state, the clock never
     before = ("import kitchen_tamp.planning.landmark_count as counting\n"
               "from kitchen_tamp.planning.heuristics import RelaxedExploration\n"
-              "from kitchen_tamp.planning.search import greedy_kernel_loading as loading\n"
               "work = counting.LandmarkEvaluator(RelaxedExploration(task, 'hadd')).work_per_evaluation\n"
               "counting.COMPILED_AFTER_WORK = 3 * work\n"
-              "loading.HANDOVER_AFTER_SECONDS = loading.STALL_SECONDS = 1e9\n")
-    assert not _numba_imported_by_gbfs("sokoban", "task23.pddl", before)
+              "loading.NATIVE_HANDOVER_AFTER_SECONDS = loading.HANDOVER_AFTER_SECONDS = 1e9\n"
+              "loading.STALL_SECONDS = 1e9\n"
+              + ("" if c_search else "loading.native_library = lambda: None\n"))
+    assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl", before)
 
 
 def test_a_search_whose_root_is_dear_hands_over_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
     if loading.ahead_of_time_kernel() is None:
-        pytest.skip("no search kernel compiled ahead of time for these sources (make install)")
+        pytest.skip(NO_AHEAD_OF_TIME)
     task = _load("sokoban", "task23.pddl")
     python = _search(task, 10**18, monkeypatch)
     evaluated: list[object] = []
@@ -147,6 +181,7 @@ def test_a_search_whose_root_is_dear_hands_over_at_once(monkeypatch: pytest.Monk
         return evaluate(self, *args)  # type: ignore[arg-type]
 
     monkeypatch.setattr(landmark_count_module.LandmarkEvaluator, "evaluate", counted)
+    monkeypatch.setattr(loading, "native_library", lambda: None)  # the rule for the kernel ahead of time
     monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", 0.0)  # any root costs more than handing over
     assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
     assert len(evaluated) == 2  # the root, in Python, twice; then every state in the kernel
@@ -173,6 +208,7 @@ def test_a_stall_is_counted_from_the_last_new_best_h(monkeypatch: pytest.MonkeyP
     monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.15)
     evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
     handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
+    handover.native_looked_for = True  # as without the C search: its clock is tested below
     clock[0] += 0.009
     assert not handover.due()
     handover.progressed()
@@ -184,3 +220,29 @@ def test_a_stall_is_counted_from_the_last_new_best_h(monkeypatch: pytest.MonkeyP
     assert not handover.due()
     clock[0] += 0.15
     assert handover.due()
+
+
+def test_without_the_c_search_its_clock_leaves_the_search_in_python(monkeypatch: pytest.MonkeyPatch) -> None:
+    clock = [10.0]
+    monkeypatch.setattr(alternating_greedy.time, "process_time", lambda: clock[0])
+    monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.005)
+    monkeypatch.setattr(loading, "native_library", lambda: None)
+    evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
+    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
+    handover.progressed()
+    assert not handover.due()
+    clock[0] += 0.006
+    assert handover.due()  # the C search's turn
+    assert handover.search() is None  # none built, and the other clocks have not run out
+    assert handover.native_looked_for and not handover.due()
+
+
+def test_the_c_search_is_looked_for_on_its_own_clock(monkeypatch: pytest.MonkeyPatch) -> None:
+    if loading.native_library() is None:
+        pytest.skip(NO_C_SEARCH)
+    task = _load("pegsol", "task13.pddl")
+    python = _search(task, 10**18, monkeypatch)
+    monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.0)  # at the first state after the root
+    monkeypatch.setattr(loading, "ahead_of_time_kernel", lambda: None)  # it would not be asked anyway
+    handed_over = alternating_greedy_search(task, SearchBudget(None, 20_000))
+    assert _counts(handed_over) == _counts(python)

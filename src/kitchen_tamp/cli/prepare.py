@@ -13,7 +13,8 @@ kitchen's sphere model. The activity planner's relaxed exploration
 (``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
 (``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
 the default kitchen's task, and the search once more ahead of time into an
-extension module that runs without numba (``greedy_ahead``); so are the sphere model's
+extension module that runs without numba (``greedy_ahead``), and once in C with the system's
+C compiler into a library that runs without numpy either (``native_greedy``); so are the sphere model's
 validity and clearance kernels, which is all a kitchen run calls
 (``motion.geometry.spheres.kernels.ahead_of_time``): such a run never imports numba.
 """
@@ -116,6 +117,23 @@ def _compile_planning_kernels(task: Task) -> None:
     evaluator.root()
     compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
     _ahead_of_time("the greedy search's kernel", compile_ahead_of_time)  # with the signature of that run
+    _compile_c_search()
+
+
+def _compile_c_search() -> None:
+    """The greedy search in C (``native_greedy``), or say why not (a search then hands over to numba's
+    kernels, the same search)."""
+    import subprocess
+
+    from kitchen_tamp.planning.search.native_greedy import compile_library
+
+    try:
+        compile_library()
+    except (OSError, subprocess.CalledProcessError) as error:  # no C compiler, or it failed
+        detail = error.stderr if isinstance(error, subprocess.CalledProcessError) else error
+        reason = " ".join(str(detail).split())
+        print(f"not compiled: the greedy search in C ({type(error).__name__}: {reason}); "
+              "large searches will hand over to numba's kernels, the same search")
 
 
 def main() -> int:

@@ -19,17 +19,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
+from kitchen_tamp.planning.heuristics import BUCKET_LEVELS, INFINITY, RelaxedExploration
 from kitchen_tamp.planning.task import State, bits
 
 if TYPE_CHECKING:
     from kitchen_tamp.planning.landmark_count import LandmarkCount
     from kitchen_tamp.planning.relaxed_kernel import ByteArray, IntArray
-
-
-BUCKET_LEVELS = 4096
-"""Costs h_add's exploration keeps in buckets (first-in first-out lists, ``relaxed_kernel``); dearer offers
-go to a heap."""
 
 
 def _flat(rows: Iterable[Iterable[int]]) -> tuple[IntArray, IntArray]:

@@ -101,6 +101,11 @@ def _entries_by_key(task: Task, entries: list[Entry]) -> KeyedEntries:
     return mask_of(k.bit_length() - 1 for k in keyed), {k: tuple(v) for k, v in keyed.items()}, tuple(unkeyed)
 
 
+BUCKET_LEVELS = 4096
+"""Costs the compiled explorations (``relaxed_kernel``, ``search/greedy_search.c``) keep in buckets
+(first-in first-out lists); dearer offers go to a heap, in the same order."""
+
+
 class RelaxedExploration:
     """Precomputed structure for fast relaxed explorations of one task."""
 

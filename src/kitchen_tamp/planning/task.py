@@ -148,6 +148,16 @@ class Task:
                 for action in self.actions]
 
     @cached_property
+    def keyed_action_indices(self) -> tuple[list[int], list[list[int]]]:
+        """The actions without a key atom, and per atom the actions keyed on it, as indices in index
+        order: the order ``successor_indices`` tries them in, as the compiled searches lay them out."""
+        unconditional: list[int] = []
+        by_key: list[list[int]] = [[] for _ in self.atoms]
+        for index, key in enumerate(self.key_atoms):
+            (by_key[key] if key >= 0 else unconditional).append(index)
+        return unconditional, by_key
+
+    @cached_property
     def successor_table(self) -> SuccessorTable:
         """Actions keyed by their least common precondition atom.
 

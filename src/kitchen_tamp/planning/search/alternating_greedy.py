@@ -209,11 +209,14 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
         return handed_over
     clock = time.process_time()
     root_evaluation = evaluator.root()
-    if root_evaluation.h_ff * (time.process_time() - clock) > loading.HANDOVER_COST_SECONDS:
-        # Even the shortest search to expect costs more in Python than handing over.
+    # Even the shortest search to expect may cost more in Python than handing over.
+    shortest_in_python = root_evaluation.h_ff * (time.process_time() - clock)
+    if shortest_in_python > loading.NATIVE_HANDOVER_AFTER_SECONDS:
+        handover.native_due_at = 0.0
+    if shortest_in_python > loading.HANDOVER_COST_SECONDS:
         handover.due_at = 0.0
-        if (handed_over := handover.search()) is not None:
-            return handed_over
+    if handover.due() and (handed_over := handover.search()) is not None:
+        return handed_over
     queues.push(_values(root_evaluation, heuristics), (None, root), preferred=False)
     progress = _Progress(_values(root_evaluation, heuristics))
     expanded, generated, evaluated, check_at = 0, 1, 0, 0.0
@@ -252,18 +255,22 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
 
 
 class _Handover:
-    """When and how the lazy search goes over to the compiled kernel (``compiled_greedy``).
+    """When and how the lazy search goes over to a compiled search (``native_greedy``, ``compiled_greedy``).
 
-    Once the search has spent ``loading.HANDOVER_AFTER_SECONDS`` of CPU time, or ``loading.STALL_SECONDS``
-    without finding a new best h, or sooner when its evaluator's next state would take it to the JIT
-    exploration (``LandmarkEvaluator.compiles_next``), the kernel compiled ahead of time is looked for;
-    without it, the search goes over to numba's JIT kernel when the evaluator has switched to the JIT
+    Once the search has spent ``loading.NATIVE_HANDOVER_AFTER_SECONDS`` of CPU time, the C search is looked
+    for (``native_greedy``: no numpy). Without it, once the search has spent
+    ``loading.HANDOVER_AFTER_SECONDS``, or ``loading.STALL_SECONDS`` without finding a new best h, or
+    sooner when its evaluator's next state would take it to the JIT exploration
+    (``LandmarkEvaluator.compiles_next``), the kernel compiled ahead of time is looked for; without that
+    either, the search goes over to numba's JIT kernel when the evaluator has switched to the JIT
     exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
         self.last_progress = time.process_time()
+        self.native_due_at = self.last_progress + loading.NATIVE_HANDOVER_AFTER_SECONDS
         self.due_at = self.last_progress + loading.HANDOVER_AFTER_SECONDS
+        self.native_looked_for = False
         self.ahead_of_time_looked_for = False
 
     def progressed(self) -> None:
@@ -274,11 +281,20 @@ class _Handover:
         if self.evaluator.compiled is not None or self.evaluator.compiles_next():
             return True
         now = time.process_time()
+        if not self.native_looked_for and now > self.native_due_at:
+            return True
         stalled = not self.ahead_of_time_looked_for and now - self.last_progress > loading.STALL_SECONDS
         return stalled or now > self.due_at
 
     def search(self) -> SearchResult | None:
-        """The compiled search's result, or None: no kernel yet (go on in Python)."""
+        """The compiled search's result, or None: no compiled search yet (go on in Python)."""
+        if not self.native_looked_for and self.due():
+            self.native_looked_for = True
+            library = loading.native_library()
+            if library is not None:
+                from kitchen_tamp.planning.search.native_greedy import native_lazy_search
+
+                return native_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, library)
         kernel = None
         if not self.ahead_of_time_looked_for and self.due():
             self.ahead_of_time_looked_for = True

@@ -1,9 +1,10 @@
 """The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
 
-``alternating_greedy``'s lazy search hands a task over to this once it has spent
-long enough in Python (``greedy_kernel_loading.HANDOVER_AFTER_SECONDS``, or
-``STALL_SECONDS`` without a new best h, with the kernel compiled ahead of time,
-else once its evaluator switches to the JIT kernels): the search then starts
+``alternating_greedy``'s lazy search hands a task over to this when the search
+in C (``native_greedy``) is not built, once it has spent long enough in Python
+(``greedy_kernel_loading.HANDOVER_AFTER_SECONDS``, or ``STALL_SECONDS`` without
+a new best h, with the kernel compiled ahead of time, else once its evaluator
+switches to the JIT kernels): the search then starts
 again from the root in the kernel, which takes the same steps as the Python
 search (the same queues, turns, ties, successor order and evaluations) and so
 returns the plan the Python search would, with the same counts. The
@@ -12,8 +13,6 @@ Importing this module imports numpy, not numba.
 """
 
 from __future__ import annotations
-
-from itertools import pairwise
 
 import numpy as np
 
@@ -26,8 +25,8 @@ from kitchen_tamp.planning.compiled_exploration import (
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
 from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, GreedyKernel
-from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
-from kitchen_tamp.planning.task import State, Task, bits
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_from_rows
+from kitchen_tamp.planning.task import Task, bits
 
 SuccessorArrays = tuple[np.ndarray, ...]
 
@@ -36,14 +35,10 @@ def _successor_arrays(task: Task, compiled: CompiledExploration) -> SuccessorArr
     """Actions without positive preconditions, actions by key atom (CSR), preconditions, negative
     preconditions, adds and deletes (CSR by action), as ``greedy_kernel._applicable`` and ``_apply`` read
     them."""
-    keys = task.key_atoms
-    by_key: list[list[int]] = [[] for _ in task.atoms]
-    for index, key in enumerate(keys):
-        if key >= 0:
-            by_key[key].append(index)
+    unconditional_indices, by_key = task.keyed_action_indices
     key_start, key_actions = _flat(by_key)
     delete_start, deletes = _flat(bits(action.delete) for action in task.actions)
-    unconditional = np.array([index for index, key in enumerate(keys) if key < 0], dtype=np.int64)
+    unconditional = np.array(unconditional_indices, dtype=np.int64)
     return (unconditional, key_start, key_actions, compiled.pre_start, compiled.pres, compiled.neg_start,
             compiled.negs, compiled.adds_start, compiled.adds, delete_start, deletes)
 
@@ -71,19 +66,6 @@ def _landmark_arrays(compiled: CompiledExploration, count: CompiledLandmarkCount
             compiled.negs, compiled.found, landmark_preferred)
 
 
-def _plan_from(task: Task, parents: list[int], actions: list[int], goal_row: int) -> tuple[State, ...]:
-    """The states from the root to the goal row."""
-    steps: list[int] = []
-    row = goal_row
-    while parents[row] >= 0:
-        steps.append(actions[row])
-        row = parents[row]
-    states = [task.initial_state]
-    for action in reversed(steps):
-        states.append(task.actions[action].apply(states[-1]))
-    return tuple(states)
-
-
 def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
                          kernel: GreedyKernel) -> SearchResult:
     """``alternating_greedy._lazy`` from the root, in ``kernel`` (``greedy_kernel_loading``'s)."""
@@ -104,8 +86,7 @@ def compiled_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int
         _landmark_arrays(compiled, count, evaluator.landmark_preferred), settings)
     counts = (int(expanded), int(generated), int(evaluated))
     if outcome == SOLVED:
-        states = _plan_from(task, parents.tolist(), actions.tolist(), int(goal_row))
-        plan = tuple(task.action_between(a, b) for a, b in pairwise(states))
+        plan = plan_from_rows(task, parents.tolist(), actions.tolist(), int(goal_row))
         return SearchResult("gbfs", "solved", plan, *counts, budget.elapsed())
     if outcome == OUT_OF_BUDGET:
         return SearchResult("gbfs", "budget", None, *counts, budget.elapsed(), budget.describe())

@@ -1,15 +1,18 @@
-"""Where the compiled greedy search comes from: the module compiled ahead of time, or numba's JIT.
+"""Where the compiled greedy search comes from: C, a module compiled ahead of time, or numba's JIT.
 
 Importing numba costs about 0.7 s of CPU and reading the JIT kernels from its
 cache some tenths more, which is more than many whole searches take. So
-``make install`` (``python -m kitchen_tamp.cli.prepare``) also compiles
-``greedy_kernel.lazy_greedy_search`` ahead of time with numba's ``pycc`` into
-an extension module in this package's ``__pycache__`` (``greedy_ahead``),
-named after a digest of the kernels' sources so that an edited kernel is never
-served by a stale module (``kitchen_tamp.ahead_of_time_modules``). Loading it
-needs numpy only (about 0.2 s). Without
-it (a read-only install, an edited kernel before the next ``make install``)
-the search runs through numba's JIT kernel, the same code.
+``make install`` (``python -m kitchen_tamp.cli.prepare``) compiles the search
+beforehand, twice: in C (``greedy_search.c``) into a shared library that
+ctypes loads in a few milliseconds (``native_greedy``), and
+``greedy_kernel.lazy_greedy_search`` with numba's ``pycc`` into an extension
+module in this package's ``__pycache__`` (``greedy_ahead``), which needs
+numpy's import (about 0.05 s). Each is named after a digest of its sources so
+that an edited search is never served by a stale build
+(``kitchen_tamp.ahead_of_time_modules``). A search hands over to the first of
+them that is there; without either (no C compiler, a read-only install, an
+edited kernel before the next ``make install``) it runs through numba's JIT
+kernel, the same code.
 
 This module imports neither numpy nor numba, and at load nothing beyond what the
 planner imports anyway (every ``gbfs`` run loads it).
@@ -25,6 +28,12 @@ from kitchen_tamp.ahead_of_time_modules import AheadOfTimeModule
 
 SOLVED, UNSOLVABLE, OUT_OF_BUDGET = 0, 1, 2
 """The search's outcomes as the kernel returns them."""
+
+NATIVE_HANDOVER_AFTER_SECONDS = 0.005
+"""CPU seconds of the lazy greedy search in Python after which it hands over to the C search
+(``native_greedy``), when it is built: about what loading it and laying out a medium task's arrays cost
+(4-5 ms for a few hundred actions, 25 ms for 19,000; docs/planner.md, "The search in C"). A clock, as
+below: the C search takes the Python search's steps, so the plan and the counts do not depend on when."""
 
 HANDOVER_AFTER_SECONDS = 0.15
 """CPU seconds of the lazy greedy search in Python after which it hands over to the kernel compiled ahead of
@@ -69,3 +78,10 @@ def jit_kernel() -> GreedyKernel:
 
     kernel: GreedyKernel = lazy_greedy_search
     return kernel
+
+
+def native_library() -> Any:
+    """The C search's library (``native_greedy.load_library``; a ``ctypes.CDLL``), None without one."""
+    from kitchen_tamp.planning.search.native_greedy import load_library  # ctypes: only when handing over
+
+    return load_library()

@@ -6,7 +6,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import Literal
+from typing import Literal, Protocol
 
 from kitchen_tamp.planning.task import GroundAction, State, Task
 
@@ -53,6 +53,27 @@ def plan_to(task: Task, parents: StateParents, state: State) -> tuple[GroundActi
         parent = parents[parent]
     path.reverse()
     return tuple(task.action_between(a, b) for a, b in pairwise(path))
+
+
+class RowLinks(Protocol):
+    """Per row of a compiled search, an int (its parent row, -1 at the root; or its action)."""
+
+    def __getitem__(self, row: int, /) -> int: ...
+
+
+def plan_from_rows(task: Task, parents: RowLinks, actions: RowLinks,
+                   goal_row: int) -> tuple[GroundAction, ...]:
+    """The actions from the root to ``goal_row`` of a compiled search's rows (each evaluated state's row
+    holds its parent row and the action that generated it), as ``plan_to`` recovers them."""
+    steps: list[int] = []
+    row = goal_row
+    while parents[row] >= 0:
+        steps.append(actions[row])
+        row = parents[row]
+    states = [task.initial_state]
+    for action in reversed(steps):
+        states.append(task.actions[action].apply(states[-1]))
+    return tuple(task.action_between(a, b) for a, b in pairwise(states))
 
 
 class SearchBudget:

@@ -1,0 +1,229 @@
+"""The lazy alternating greedy search in C (``greedy_search.c``), built at install and called through ctypes.
+
+``alternating_greedy``'s lazy search hands a task over to a compiled search once
+it has spent long enough in Python; the search then starts again from the root
+and takes the Python search's steps, so the plan and the counts are the same.
+Handing over to the module numba compiled ahead of time (``compiled_greedy``)
+costs a process numpy's import, about 0.05 s of CPU, which is most of a small
+search's time. This search is the same one written in C: ``make install``
+(``python -m kitchen_tamp.cli.prepare``) compiles it with the system's C
+compiler into a shared library in this package's ``__pycache__``, named after a
+digest of its source (an edited source is never served by a stale library), and
+loading it costs ctypes' import and a ``dlopen``, about 2 ms. Its arrays are laid
+out here from the task with the standard library's ``array``, without numpy.
+Without a C compiler there is no library, and the search hands over to numba's
+kernels as before.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+from array import array
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from kitchen_tamp.planning.heuristics import BUCKET_LEVELS
+from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
+from kitchen_tamp.planning.search.breadth_first import unsolvable_message
+from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, UNSOLVABLE
+from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_from_rows
+from kitchen_tamp.planning.task import bits
+
+SOURCE = Path(__file__).resolve().with_name("greedy_search.c")
+COMPILER_FLAGS = ("-O2", "-std=c99", "-shared", "-fPIC")
+"""How the library is compiled: portable optimisation, no processor-specific instructions (the search
+computes with integers only)."""
+OUT_OF_MEMORY = 3
+"""The C search's outcome when an allocation failed."""
+
+_Int64s: type[ctypes._Pointer[ctypes.c_int64]] = ctypes.POINTER(ctypes.c_int64)
+_Bytes: type[ctypes._Pointer[ctypes.c_uint8]] = ctypes.POINTER(ctypes.c_uint8)
+
+
+_COUNTS = ctypes.c_int64
+_TASK_FIELDS: list[tuple[str, Any]] = [
+    ("n_atoms", _COUNTS), ("n_actions", _COUNTS), ("state_bytes", _COUNTS), ("bucket_levels", _COUNTS),
+    ("root", _Bytes), ("goal", _Bytes), ("goal_neg", _Bytes),
+    ("unconditional", _Int64s), ("n_unconditional", _COUNTS),
+    ("key_start", _Int64s), ("key_actions", _Int64s),
+    ("pre_start", _Int64s), ("pres", _Int64s), ("neg_start", _Int64s), ("negs", _Int64s),
+    ("add_start", _Int64s), ("adds", _Int64s), ("delete_start", _Int64s), ("deletes", _Int64s),
+    ("users_start", _Int64s), ("users", _Int64s), ("precondition_counts", _Int64s),
+    ("free_actions", _Int64s), ("n_free_actions", _COUNTS),
+    ("goal_ids", _Int64s), ("n_goal_ids", _COUNTS),
+    ("landmarks_used", _COUNTS), ("landmark_preferred", _COUNTS),
+    ("n_landmarks", _COUNTS), ("landmark_atoms", _Int64s),
+    ("landmark_goal", _Bytes), ("natural", _Bytes), ("greedy_necessary", _Bytes),
+    ("achievers_start", _Int64s), ("achievers", _Int64s),
+]
+"""``struct GreedyTask`` of ``greedy_search.c``, field by field."""
+
+
+class _Task(ctypes.Structure):
+    """``struct GreedyTask`` of ``greedy_search.c``."""
+
+    _fields_ = _TASK_FIELDS
+
+
+class _Settings(ctypes.Structure):
+    """``struct GreedySettings``."""
+
+    _fields_ = [("heuristics", _COUNTS), ("boost", _COUNTS), ("novelty", _COUNTS),
+                ("max_expansions", _COUNTS), ("deadline", ctypes.c_double)]
+
+
+_RESULT_FIELDS: list[tuple[str, Any]] = [
+    ("outcome", _COUNTS), ("goal_row", _COUNTS), ("expanded", _COUNTS), ("generated", _COUNTS),
+    ("evaluated", _COUNTS), ("n_rows", _COUNTS), ("parents", _Int64s), ("actions", _Int64s),
+]
+"""``struct GreedyResult``, field by field."""
+
+
+class _Result(ctypes.Structure):
+    """``struct GreedyResult``."""
+
+    _fields_ = _RESULT_FIELDS
+
+
+def library_path() -> Path:
+    """Where the library compiled from the current source is (or would be)."""
+    digest = hashlib.sha256(" ".join(COMPILER_FLAGS).encode())
+    digest.update(SOURCE.read_bytes())
+    return SOURCE.parent / "__pycache__" / f"native_greedy_{digest.hexdigest()[:16]}.so"
+
+
+def compile_library() -> Path:
+    """Compile the search into ``library_path()`` unless it is there; libraries of earlier sources are
+    removed. Raises ``OSError`` (no compiler) or ``subprocess.CalledProcessError`` (it failed)."""
+    import os  # here, not at load: a search handing over imports this module
+    import subprocess
+    import sysconfig
+
+    path = library_path()
+    if path.exists():
+        return path
+    path.parent.mkdir(parents=True, exist_ok=True)
+    compiler = (sysconfig.get_config_var("CC") or "cc").split()
+    partial = path.with_name(f"{path.stem}.{os.getpid()}.partial")
+    try:
+        subprocess.run([*compiler, *COMPILER_FLAGS, "-o", str(partial), str(SOURCE)], check=True,
+                       capture_output=True, text=True)
+        os.replace(partial, path)
+    finally:
+        partial.unlink(missing_ok=True)
+    for stale in path.parent.glob("native_greedy_*.so"):
+        if stale != path:
+            stale.unlink(missing_ok=True)
+    return path
+
+
+def load_library() -> ctypes.CDLL | None:
+    """The library compiled from the current source, or None without one."""
+    path = library_path()
+    if not path.exists():
+        return None
+    try:
+        library = ctypes.CDLL(str(path))
+    except OSError:
+        return None
+    library.greedy_search.argtypes = [ctypes.POINTER(_Task), ctypes.POINTER(_Settings),
+                                      ctypes.POINTER(_Result)]
+    library.greedy_search.restype = ctypes.c_int64
+    library.greedy_result_free.argtypes = [ctypes.POINTER(_Result)]
+    library.greedy_result_free.restype = None
+    return library
+
+
+class _Arrays:
+    """The task's arrays, kept alive while the C search reads them."""
+
+    def __init__(self) -> None:
+        self.kept: list[array[int]] = []
+
+    def ints(self, values: Iterable[int]) -> ctypes._Pointer[ctypes.c_int64]:
+        kept = array("q", values)
+        self.kept.append(kept)
+        return ctypes.cast(kept.buffer_info()[0], _Int64s)
+
+    def bytes(self, values: Iterable[int] | bytes) -> ctypes._Pointer[ctypes.c_uint8]:
+        kept = array("B", values)
+        self.kept.append(kept)
+        return ctypes.cast(kept.buffer_info()[0], _Bytes)
+
+    def csr(self, rows: Iterable[Iterable[int]]) -> tuple[ctypes._Pointer[ctypes.c_int64],
+                                                          ctypes._Pointer[ctypes.c_int64]]:
+        """Rows of ints as the offsets where each row starts (one more than rows) and their values."""
+        starts = [0]
+        values: list[int] = []
+        for row in rows:
+            values.extend(row)
+            starts.append(len(values))
+        return self.ints(starts), self.ints(values)
+
+
+def _task_structure(evaluator: LandmarkEvaluator, arrays: _Arrays) -> _Task:
+    """The task, its relaxed exploration and its landmark count as ``struct GreedyTask``."""
+    exploration, count = evaluator.exploration, evaluator.count
+    task = exploration.task
+    size = max(1, (exploration.n_atoms + 7) // 8)
+    structure = _Task(n_atoms=exploration.n_atoms, n_actions=len(task.actions), state_bytes=size,
+                      bucket_levels=BUCKET_LEVELS)
+    structure.root = arrays.bytes(task.initial_state.to_bytes(size, "little"))
+    structure.goal = arrays.bytes(task.goal.to_bytes(size, "little"))
+    structure.goal_neg = arrays.bytes(task.goal_neg.to_bytes(size, "little"))
+    unconditional, by_key = task.keyed_action_indices
+    structure.unconditional, structure.n_unconditional = arrays.ints(unconditional), len(unconditional)
+    structure.key_start, structure.key_actions = arrays.csr(by_key)
+    structure.pre_start, structure.pres = arrays.csr(exploration.preconditions_of)
+    structure.neg_start, structure.negs = arrays.csr(bits(action.pre_neg) for action in task.actions)
+    structure.add_start, structure.adds = arrays.csr(exploration.adds_of)
+    structure.delete_start, structure.deletes = arrays.csr(bits(action.delete) for action in task.actions)
+    structure.users_start, structure.users = arrays.csr(exploration.relevant_users)
+    structure.precondition_counts = arrays.ints(exploration.relevant_precondition_count)
+    structure.free_actions = arrays.ints(exploration.relevant_free_actions)
+    structure.n_free_actions = len(exploration.relevant_free_actions)
+    structure.goal_ids, structure.n_goal_ids = arrays.ints(exploration.goal_ids), len(exploration.goal_ids)
+    achievers = exploration.achievers if count is None else count.achievers
+    structure.achievers_start, structure.achievers = arrays.csr(achievers)
+    structure.landmark_preferred = evaluator.landmark_preferred
+    if count is None:
+        structure.landmark_goal = structure.natural = structure.greedy_necessary = arrays.bytes(bytes(size))
+        structure.landmark_atoms = arrays.ints(())
+        return structure
+    atoms = list(bits(count.landmarks))
+    structure.landmarks_used, structure.n_landmarks = 1, len(atoms)
+    structure.landmark_atoms = arrays.ints(atoms)
+    structure.landmark_goal = arrays.bytes(count.goal.to_bytes(size, "little"))
+    structure.natural = arrays.bytes(b"".join(count.natural[atom].to_bytes(size, "little") for atom in atoms))
+    structure.greedy_necessary = arrays.bytes(
+        b"".join(count.greedy_necessary[atom].to_bytes(size, "little") for atom in atoms))
+    return structure
+
+
+def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
+                       library: ctypes.CDLL) -> SearchResult:
+    """``alternating_greedy._lazy`` from the root, in the C library (``load_library``'s)."""
+    task = evaluator.exploration.task
+    arrays = _Arrays()
+    structure = _task_structure(evaluator, arrays)
+    settings = _Settings(2 if evaluator.count is not None else 1, boost, novelty,
+                         -1 if budget.max_expansions is None else budget.max_expansions,
+                         -1.0 if budget.deadline is None else budget.deadline)
+    result = _Result()
+    outcome = library.greedy_search(ctypes.byref(structure), ctypes.byref(settings), ctypes.byref(result))
+    try:
+        if outcome == OUT_OF_MEMORY:
+            raise MemoryError(f"the greedy search ran out of memory after {result.expanded} expansions")
+        counts = (result.expanded, result.generated, result.evaluated)
+        if outcome == SOLVED:
+            plan = plan_from_rows(task, result.parents, result.actions, result.goal_row)
+            return SearchResult("gbfs", "solved", plan, *counts, budget.elapsed())
+        if outcome == OUT_OF_BUDGET:
+            return SearchResult("gbfs", "budget", None, *counts, budget.elapsed(), budget.describe())
+        assert outcome == UNSOLVABLE, outcome
+        return SearchResult("gbfs", "unsolvable", None, *counts, budget.elapsed(),
+                            unsolvable_message(task, result.n_rows))
+    finally:
+        library.greedy_result_free(ctypes.byref(result))
