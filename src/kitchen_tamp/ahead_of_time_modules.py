@@ -2,9 +2,10 @@
 
 Importing numba and readying its compiler cost a process most of a second of one core, more than
 many planning runs take. So ``make install`` (``python -m kitchen_tamp.cli.prepare``) compiles the
-kernels a run needs most with numba's ``pycc`` into extension modules that load with numpy alone:
-the activity planner's greedy search (``planning.search.greedy_kernel_loading``) and the sphere
-model's validity and clearance (``motion.geometry.spheres.kernels.loading``). A module is named
+kernels a kitchen run needs with numba's ``pycc`` into an extension module that loads with numpy
+alone: the sphere model's validity and clearance (``motion.geometry.spheres.kernels.loading``). (The
+activity planner's greedy search is built in C instead, ``planning.search.native_greedy``, which needs
+no numpy.) A module is named
 after a digest of its kernels' sources, so an edited kernel is never served by a stale module
 (until the next ``make install``, its JIT kernel serves, the same code), and, when it is compiled
 for this machine's processor, of the processor too, so that an install shared by several
@@ -60,7 +61,7 @@ class AheadOfTimeModule:
 
     def name(self) -> str:
         """The module's name for the current sources (and processor)."""
-        import hashlib  # here, not at load: every run loads this module
+        import hashlib  # here, not at load: every kitchen run loads this module
 
         digest = hashlib.sha256(processor_signature().encode() if self.for_this_processor else b"")
         for source in self.sources:
@@ -69,7 +70,7 @@ class AheadOfTimeModule:
         return self.prefix + digest.hexdigest()[:16]
 
     def _path(self, name: str) -> Path | None:
-        import importlib.machinery  # here, not at load: the planner's start-up imports this module
+        import importlib.machinery  # here, not at load: every kitchen run loads this module
 
         for suffix in importlib.machinery.EXTENSION_SUFFIXES:
             path = self.folder / (name + suffix)

@@ -1,8 +1,8 @@
 """The compiled lazy greedy search takes the Python search's steps: the same plan after the same counts.
 
-The Python search hands over to a compiled search (the C library, the kernel compiled ahead of time, or
-numba's JIT) from the first state, after some Python work, or never: ``gbfs`` returns the same plan after
-the same expansions, generations and evaluations, and the plan is valid.
+The Python search hands over to a compiled search (the search in C, or numba's JIT kernel) from the
+first state, after some Python work, or never: ``gbfs`` returns the same plan after the same expansions,
+generations and evaluations, and the plan is valid.
 """
 
 from __future__ import annotations
@@ -32,34 +32,25 @@ def _load(domain: str, problem: str) -> Task:
 
 
 NO_C_SEARCH = "no C search built for this source (make install, with a C compiler)"
-NO_AHEAD_OF_TIME = "no search kernel compiled ahead of time for these sources (make install)"
 
 
-@pytest.fixture(params=["C", "ahead of time", "jit"])
+@pytest.fixture(params=["C", "jit"])
 def kernel(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
-    """Each test runs with the search in C and the kernel compiled ahead of time (both built by
-    ``make install``) and with numba's JIT."""
+    """Each test runs with the search in C (built by ``make install``) and with numba's JIT kernel."""
     if request.param == "C":
         if loading.native_library() is None:
             pytest.skip(NO_C_SEARCH)
-        return "C"
-    monkeypatch.setattr(loading, "native_library", lambda: None)
-    if request.param == "jit":
-        monkeypatch.setattr(loading, "ahead_of_time_kernel", lambda: None)
-    elif loading.ahead_of_time_kernel() is None:
-        pytest.skip(NO_AHEAD_OF_TIME)
+    else:
+        monkeypatch.setattr(loading, "native_library", lambda: None)
     return str(request.param)
 
 
 def _search(task: Task, after_work: int, monkeypatch: pytest.MonkeyPatch, expansions: int = 20_000,
             **options: bool) -> SearchResult:
     """gbfs with the evaluator's switch after ``after_work`` (never: 10**18), which hands the search over
-    (the hand-overs by CPU time are off)."""
+    (the hand-over by CPU time is off)."""
     monkeypatch.setattr(landmark_count_module, "COMPILED_AFTER_WORK", after_work)
     monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", INFINITY)
-    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", INFINITY)
-    monkeypatch.setattr(loading, "STALL_SECONDS", INFINITY)
-    monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", INFINITY)
     return alternating_greedy_search(task, SearchBudget(None, expansions), **options)
 
 
@@ -144,33 +135,21 @@ def test_with_the_c_search_a_large_search_imports_neither_numpy_nor_numba() -> N
     assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl")
 
 
-def test_with_the_kernel_compiled_ahead_of_time_a_large_search_does_not_import_numba() -> None:
-    if loading.ahead_of_time_kernel() is None:
-        pytest.skip(NO_AHEAD_OF_TIME)
-    without_c = "loading.native_library = lambda: None\n"
-    assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl", without_c)
-
-
-@pytest.mark.parametrize("c_search", [True, False])
-def test_a_search_hands_over_before_its_evaluation_would_import_numba(c_search: bool) -> None:
-    if c_search and loading.native_library() is None:
+def test_a_search_hands_over_before_its_evaluation_would_import_numba() -> None:
+    if loading.native_library() is None:
         pytest.skip(NO_C_SEARCH)
-    if not c_search and loading.ahead_of_time_kernel() is None:
-        pytest.skip(NO_AHEAD_OF_TIME)
     # the evaluator's work would take it to the compiled exploration at its fourth state, the clock never
     before = ("import kitchen_tamp.planning.landmark_count as counting\n"
               "from kitchen_tamp.planning.heuristics import RelaxedExploration\n"
               "work = counting.LandmarkEvaluator(RelaxedExploration(task, 'hadd')).work_per_evaluation\n"
               "counting.COMPILED_AFTER_WORK = 3 * work\n"
-              "loading.NATIVE_HANDOVER_AFTER_SECONDS = loading.HANDOVER_AFTER_SECONDS = 1e9\n"
-              "loading.STALL_SECONDS = 1e9\n"
-              + ("" if c_search else "loading.native_library = lambda: None\n"))
+              "loading.NATIVE_HANDOVER_AFTER_SECONDS = 1e9\n")
     assert not _imported_by_gbfs("numba", "sokoban", "task23.pddl", before)
 
 
-def test_a_search_whose_root_is_dear_hands_over_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
-    if loading.ahead_of_time_kernel() is None:
-        pytest.skip(NO_AHEAD_OF_TIME)
+def test_a_search_whose_root_is_dear_hands_over_after_it(monkeypatch: pytest.MonkeyPatch) -> None:
+    if loading.native_library() is None:
+        pytest.skip(NO_C_SEARCH)
     task = _load("sokoban", "task23.pddl")
     python = _search(task, 10**18, monkeypatch)
     evaluated: list[object] = []
@@ -181,44 +160,22 @@ def test_a_search_whose_root_is_dear_hands_over_at_once(monkeypatch: pytest.Monk
         return evaluate(self, *args)  # type: ignore[arg-type]
 
     monkeypatch.setattr(landmark_count_module.LandmarkEvaluator, "evaluate", counted)
-    monkeypatch.setattr(loading, "native_library", lambda: None)  # the rule for the kernel ahead of time
-    monkeypatch.setattr(loading, "HANDOVER_COST_SECONDS", 0.0)  # any root costs more than handing over
+    monkeypatch.setattr(alternating_greedy._Handover, "root_evaluated",
+                        lambda self, h_ff, seconds: setattr(self, "due_at", 0.0))  # any root is dear
     assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
-    assert len(evaluated) == 2  # the root, in Python, twice; then every state in the kernel
+    assert len(evaluated) == 2  # the root, in Python, twice; then every state in C
 
 
-def test_the_hand_over_by_cpu_time_gives_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
-    task = _load("sokoban", "task23.pddl")
-    python = _search(task, 10**18, monkeypatch)
-    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.0)  # at the first evaluation after the root
-    assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
-
-
-def test_a_stalled_search_hands_over_with_the_same_search(monkeypatch: pytest.MonkeyPatch) -> None:
-    task = _load("pegsol", "task13.pddl")
-    python = _search(task, 10**18, monkeypatch)
-    monkeypatch.setattr(loading, "STALL_SECONDS", 0.0)  # stalled at the first evaluation after the root
-    assert _counts(alternating_greedy_search(task, SearchBudget(None, 20_000))) == _counts(python)
-
-
-def test_a_stall_is_counted_from_the_last_new_best_h(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_root_is_dear_when_its_h_ff_evaluations_cost_more_than_handing_over(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     clock = [10.0]
     monkeypatch.setattr(alternating_greedy.time, "process_time", lambda: clock[0])
-    monkeypatch.setattr(loading, "STALL_SECONDS", 0.01)
-    monkeypatch.setattr(loading, "HANDOVER_AFTER_SECONDS", 0.15)
+    monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.005)
     evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
     handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
-    handover.native_looked_for = True  # as without the C search: its clock is tested below
-    clock[0] += 0.009
+    handover.root_evaluated(20.0, 0.0002)  # 4 ms of evaluations at the least
     assert not handover.due()
-    handover.progressed()
-    clock[0] += 0.009
-    assert not handover.due()  # 0.018 s into the search, 0.009 s since its last new best h
-    clock[0] += 0.002
-    assert handover.due()
-    handover.ahead_of_time_looked_for = True  # looked for once: only the clock and the evaluator decide now
-    assert not handover.due()
-    clock[0] += 0.15
+    handover.root_evaluated(30.0, 0.0002)  # 6 ms
     assert handover.due()
 
 
@@ -229,11 +186,10 @@ def test_without_the_c_search_its_clock_leaves_the_search_in_python(monkeypatch:
     monkeypatch.setattr(loading, "native_library", lambda: None)
     evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
     handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
-    handover.progressed()
     assert not handover.due()
     clock[0] += 0.006
     assert handover.due()  # the C search's turn
-    assert handover.search() is None  # none built, and the other clocks have not run out
+    assert handover.search() is None  # none built: numba's kernel waits for the evaluator's switch
     assert handover.native_looked_for and not handover.due()
 
 
@@ -243,6 +199,5 @@ def test_the_c_search_is_looked_for_on_its_own_clock(monkeypatch: pytest.MonkeyP
     task = _load("pegsol", "task13.pddl")
     python = _search(task, 10**18, monkeypatch)
     monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.0)  # at the first state after the root
-    monkeypatch.setattr(loading, "ahead_of_time_kernel", lambda: None)  # it would not be asked anyway
     handed_over = alternating_greedy_search(task, SearchBudget(None, 20_000))
     assert _counts(handed_over) == _counts(python)

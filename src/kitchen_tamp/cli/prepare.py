@@ -12,10 +12,9 @@ still starts from an empty cache. RRT-Connect's compiled loop runs one iteration
 kitchen's sphere model. The activity planner's relaxed exploration
 (``kitchen_tamp.planning.relaxed_kernel``) and its compiled greedy search
 (``kitchen_tamp.planning.search.greedy_kernel``) are compiled the same way, on
-the default kitchen's task, and the search once more ahead of time into an
-extension module that runs without numba (``greedy_ahead``), and once in C with the system's
-C compiler into a library that runs without numpy either (``native_greedy``); so are the sphere model's
-validity and clearance kernels, which is all a kitchen run calls
+the default kitchen's task, and the same search, written in C, with the system's
+C compiler into a library that runs without numpy or numba (``native_greedy``). The sphere model's
+validity and clearance kernels, which is all a kitchen run calls, are compiled once more ahead of time
 (``motion.geometry.spheres.kernels.ahead_of_time``): such a run never imports numba.
 """
 
@@ -108,7 +107,6 @@ def _compile_planning_kernels(task: Task) -> None:
     from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
     from kitchen_tamp.planning.search.alternating_greedy import DEFAULT_BOOST
     from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search
-    from kitchen_tamp.planning.search.greedy_ahead import compile_ahead_of_time
     from kitchen_tamp.planning.search.greedy_kernel_loading import jit_kernel
     from kitchen_tamp.planning.search.result import SearchBudget
 
@@ -116,13 +114,12 @@ def _compile_planning_kernels(task: Task) -> None:
     evaluator.compiled_after_work = -1  # through the kernels from the first state
     evaluator.root()
     compiled_lazy_search(evaluator, True, DEFAULT_BOOST, SearchBudget(None, 1), jit_kernel())
-    _ahead_of_time("the greedy search's kernel", compile_ahead_of_time)  # with the signature of that run
     _compile_c_search()
 
 
 def _compile_c_search() -> None:
-    """The greedy search in C (``native_greedy``), or say why not (a search then hands over to numba's
-    kernels, the same search)."""
+    """The greedy search in C (``native_greedy``), or say why not (a long search then hands over to numba's
+    JIT kernel, the same search)."""
     import subprocess
 
     from kitchen_tamp.planning.search.native_greedy import compile_library
@@ -133,7 +130,7 @@ def _compile_c_search() -> None:
         detail = error.stderr if isinstance(error, subprocess.CalledProcessError) else error
         reason = " ".join(str(detail).split())
         print(f"not compiled: the greedy search in C ({type(error).__name__}: {reason}); "
-              "large searches will hand over to numba's kernels, the same search")
+              "long searches will hand over to numba's JIT kernel, the same search")
 
 
 def main() -> int:

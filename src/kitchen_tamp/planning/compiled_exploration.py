@@ -7,9 +7,8 @@ in a fraction of the time on large tasks. Importing this module imports numpy;
 its methods import numba and the kernels (``relaxed_kernel``), about a second
 with the kernels read from numba's cache, which a small task never earns back:
 ``LandmarkEvaluator`` calls them only once it has done enough work in Python
-(``COMPILED_AFTER_WORK``). The compiled greedy search (``search.compiled_greedy``)
-reads the arrays laid out here without importing numba when its module compiled
-ahead of time is there.
+(``COMPILED_AFTER_WORK``). The greedy search through numba's kernel
+(``search.compiled_greedy``) reads the arrays laid out here.
 """
 
 from __future__ import annotations

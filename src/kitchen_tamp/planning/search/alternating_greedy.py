@@ -209,12 +209,7 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
         return handed_over
     clock = time.process_time()
     root_evaluation = evaluator.root()
-    # Even the shortest search to expect may cost more in Python than handing over.
-    shortest_in_python = root_evaluation.h_ff * (time.process_time() - clock)
-    if shortest_in_python > loading.NATIVE_HANDOVER_AFTER_SECONDS:
-        handover.native_due_at = 0.0
-    if shortest_in_python > loading.HANDOVER_COST_SECONDS:
-        handover.due_at = 0.0
+    handover.root_evaluated(root_evaluation.h_ff, time.process_time() - clock)
     if handover.due() and (handed_over := handover.search()) is not None:
         return handed_over
     queues.push(_values(root_evaluation, heuristics), (None, root), preferred=False)
@@ -243,7 +238,6 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
         values = _values(evaluation, heuristics)
         if progress.improves(values):
             queues.boost()
-            handover.progressed()
         expanded += 1
         preferred = evaluation.preferred
         for child, index in successors(state):
@@ -257,34 +251,28 @@ def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sear
 class _Handover:
     """When and how the lazy search goes over to a compiled search (``native_greedy``, ``compiled_greedy``).
 
-    Once the search has spent ``loading.NATIVE_HANDOVER_AFTER_SECONDS`` of CPU time, the C search is looked
-    for (``native_greedy``: no numpy). Without it, once the search has spent
-    ``loading.HANDOVER_AFTER_SECONDS``, or ``loading.STALL_SECONDS`` without finding a new best h, or
-    sooner when its evaluator's next state would take it to the JIT exploration
-    (``LandmarkEvaluator.compiles_next``), the kernel compiled ahead of time is looked for; without that
-    either, the search goes over to numba's JIT kernel when the evaluator has switched to the JIT
-    exploration (``COMPILED_AFTER_WORK``), which has imported numba already."""
+    Once the search has spent ``loading.NATIVE_HANDOVER_AFTER_SECONDS`` of CPU time, or sooner when its
+    root says that even its shortest run would take longer in Python (``root_evaluated``) or when its
+    evaluator's next state would take it to the JIT exploration (``LandmarkEvaluator.compiles_next``), the
+    search in C is looked for (``native_greedy``: no numpy, no numba). Without it, the search goes over to
+    numba's JIT kernel once the evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``),
+    which has imported numba already."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
-        self.last_progress = time.process_time()
-        self.native_due_at = self.last_progress + loading.NATIVE_HANDOVER_AFTER_SECONDS
-        self.due_at = self.last_progress + loading.HANDOVER_AFTER_SECONDS
+        self.due_at = time.process_time() + loading.NATIVE_HANDOVER_AFTER_SECONDS
         self.native_looked_for = False
-        self.ahead_of_time_looked_for = False
 
-    def progressed(self) -> None:
-        """The search found a new best h: a stall is counted from now."""
-        self.last_progress = time.process_time()
+    def root_evaluated(self, h_ff: float, seconds: float) -> None:
+        """The root's evaluation took ``seconds``: a search of at least ``h_ff`` such evaluations that would
+        take longer than handing over hands over now."""
+        if h_ff * seconds > loading.NATIVE_HANDOVER_AFTER_SECONDS:
+            self.due_at = 0.0
 
     def due(self) -> bool:
         if self.evaluator.compiled is not None or self.evaluator.compiles_next():
             return True
-        now = time.process_time()
-        if not self.native_looked_for and now > self.native_due_at:
-            return True
-        stalled = not self.ahead_of_time_looked_for and now - self.last_progress > loading.STALL_SECONDS
-        return stalled or now > self.due_at
+        return not self.native_looked_for and time.process_time() > self.due_at
 
     def search(self) -> SearchResult | None:
         """The compiled search's result, or None: no compiled search yet (go on in Python)."""
@@ -295,15 +283,9 @@ class _Handover:
                 from kitchen_tamp.planning.search.native_greedy import native_lazy_search
 
                 return native_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, library)
-        kernel = None
-        if not self.ahead_of_time_looked_for and self.due():
-            self.ahead_of_time_looked_for = True
-            self.due_at = INFINITY
-            kernel = loading.ahead_of_time_kernel()
-        if kernel is None and self.evaluator.compiled is not None:
-            kernel = loading.jit_kernel()
-        if kernel is None:
+        if self.evaluator.compiled is None:
             return None
-        from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy: large tasks
+        from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy and numba
 
+        kernel = loading.jit_kernel()
         return compiled_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, kernel)

@@ -1,10 +1,8 @@
 """The lazy alternating greedy search run whole by the compiled kernel (``greedy_kernel``).
 
 ``alternating_greedy``'s lazy search hands a task over to this when the search
-in C (``native_greedy``) is not built, once it has spent long enough in Python
-(``greedy_kernel_loading.HANDOVER_AFTER_SECONDS``, or ``STALL_SECONDS`` without
-a new best h, with the kernel compiled ahead of time, else once its evaluator
-switches to the JIT kernels): the search then starts
+in C (``native_greedy``) is not built, once its evaluator has switched to the
+JIT exploration (``COMPILED_AFTER_WORK``): the search then starts
 again from the root in the kernel, which takes the same steps as the Python
 search (the same queues, turns, ties, successor order and evaluations) and so
 returns the plan the Python search would, with the same counts. The

@@ -16,8 +16,8 @@ open-addressing hash table of their row numbers. A queued entry is a
 as Fast Downward's lazy search does. A heap key is ``h << ORDER_BITS | order``,
 ``order`` counting the pushes, so equal h goes first-in first-out.
 
-This module imports numba: ``greedy_kernel_loading`` imports it only when no
-module compiled ahead of time from it is there (``greedy_ahead``).
+This module imports numba: ``greedy_kernel_loading`` imports it only when the
+same search in C (``greedy_search.c``, ``native_greedy``) is not built.
 """
 
 from __future__ import annotations
@@ -58,7 +58,7 @@ CLOCK_MONOTONIC = 1
 @intrinsic
 def _monotonic(typing_context):  # type: ignore[no-untyped-def]
     """``time.perf_counter()`` in compiled code: libc's ``clock_gettime(CLOCK_MONOTONIC)`` in seconds (a call
-    into libc, so that the module compiled ahead of time needs no Python to read the clock)."""
+    into libc, so that the compiled search needs no Python to read the clock)."""
     def generate(context, builder, signature, arguments):  # type: ignore[no-untyped-def]
         word = ir.IntType(64)
         timespec = ir.LiteralStructType([word, word])

@@ -3,16 +3,16 @@
 ``alternating_greedy``'s lazy search hands a task over to a compiled search once
 it has spent long enough in Python; the search then starts again from the root
 and takes the Python search's steps, so the plan and the counts are the same.
-Handing over to the module numba compiled ahead of time (``compiled_greedy``)
-costs a process numpy's import, about 0.05 s of CPU, which is most of a small
-search's time. This search is the same one written in C: ``make install``
+numba's kernel of it (``compiled_greedy``) costs a process numpy's import (about
+0.05 s of CPU) and numba's (most of a second), more than most searches take.
+This is the same search written in C: ``make install``
 (``python -m kitchen_tamp.cli.prepare``) compiles it with the system's C
 compiler into a shared library in this package's ``__pycache__``, named after a
-digest of its source (an edited source is never served by a stale library), and
-loading it costs ctypes' import and a ``dlopen``, about 2 ms. Its arrays are laid
-out here from the task with the standard library's ``array``, without numpy.
-Without a C compiler there is no library, and the search hands over to numba's
-kernels as before.
+digest of its source and flags (an edited source is never served by a stale
+library), and loading it costs ctypes' import and a ``dlopen``, a few
+milliseconds. Its arrays are laid out here from the task with the standard
+library's ``array``, without numpy. Without a C compiler there is no library,
+and a long search hands over to numba's JIT kernel.
 """
 
 from __future__ import annotations
