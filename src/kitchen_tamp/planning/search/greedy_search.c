@@ -30,6 +30,7 @@
 
 typedef int64_t i64;
 typedef uint8_t u8;
+typedef int32_t i32; /* the task's indices and counts: half the memory an evaluation streams through */
 
 enum { SOLVED = 0, UNSOLVABLE = 1, OUT_OF_BUDGET = 2, OUT_OF_MEMORY = 3 };
 
@@ -45,9 +46,11 @@ struct GreedyTask {
     const i64 *unconditional; /* actions without positive preconditions */
     i64 n_unconditional;
     const i64 *key_start, *key_actions; /* per atom, the actions keyed on it */
-    const i64 *pre_start, *pres, *neg_start, *negs, *add_start, *adds, *delete_start, *deletes;
-    const i64 *users_start, *users;     /* per atom, the relevant actions it is a precondition of */
-    const i64 *precondition_counts;     /* per action */
+    const i64 *pre_start, *pres, *neg_start, *negs;
+    const i32 *add_start, *adds;
+    const i64 *delete_start, *deletes;
+    const i32 *users_start, *users;     /* per atom, the relevant actions it is a precondition of */
+    const i32 *precondition_counts;     /* per action */
     const i64 *free_actions;            /* relevant actions without preconditions */
     i64 n_free_actions;
     const i64 *goal_ids;
@@ -70,7 +73,8 @@ struct GreedyResult {
 
 /* Work space of one evaluation. */
 struct Evaluation {
-    i64 *cost, *supporter, *unsettled, *settled_sum, *heap, *offered_atoms, *level_first, *next_offer,
+    i32 *unsettled;
+    i64 *cost, *supporter, *settled_sum, *heap, *offered_atoms, *level_first, *next_offer,
         *level_last, *plan, *helpful, *marked_atoms, *stack, *targets, *found;
     u8 *chosen, *marked, *unaccepted, *needed;
 };
@@ -140,7 +144,7 @@ static int additive_exploration(const struct GreedyTask *t, struct Evaluation *e
         cost[atom] = UNREACHED;
         supporter[atom] = -1;
     }
-    memcpy(e->unsettled, t->precondition_counts, (size_t)t->n_actions * sizeof(i64));
+    memcpy(e->unsettled, t->precondition_counts, (size_t)t->n_actions * sizeof(i32));
     memset(e->settled_sum, 0, (size_t)t->n_actions * sizeof(i64));
     i64 top = -1, size = 0, sequence = 0;
     for (i64 atom = 0; atom < t->n_atoms; atom++) {
@@ -484,7 +488,7 @@ i64 greedy_search(const struct GreedyTask *t, const struct GreedySettings *s, st
     i64 offers = n_atoms + t->add_start[n_actions] + 1;
     struct Evaluation e = {
         .cost = zeroed(n_atoms, sizeof(i64)), .supporter = zeroed(n_atoms, sizeof(i64)),
-        .unsettled = zeroed(n_actions, sizeof(i64)), .settled_sum = zeroed(n_actions, sizeof(i64)),
+        .unsettled = zeroed(n_actions, sizeof(i32)), .settled_sum = zeroed(n_actions, sizeof(i64)),
         .heap = zeroed(offers, sizeof(i64)), .offered_atoms = zeroed(offers, sizeof(i64)),
         .next_offer = zeroed(offers, sizeof(i64)), .level_first = zeroed(t->bucket_levels, sizeof(i64)),
         .level_last = zeroed(t->bucket_levels, sizeof(i64)), .plan = zeroed(n_actions, sizeof(i64)),

@@ -40,6 +40,7 @@ OUT_OF_MEMORY = 3
 
 _Int64s: type[ctypes._Pointer[ctypes.c_int64]] = ctypes.POINTER(ctypes.c_int64)
 _Bytes: type[ctypes._Pointer[ctypes.c_uint8]] = ctypes.POINTER(ctypes.c_uint8)
+_Int32s: type[ctypes._Pointer[ctypes.c_int32]] = ctypes.POINTER(ctypes.c_int32)
 
 
 _COUNTS = ctypes.c_int64
@@ -49,8 +50,8 @@ _TASK_FIELDS: list[tuple[str, Any]] = [
     ("unconditional", _Int64s), ("n_unconditional", _COUNTS),
     ("key_start", _Int64s), ("key_actions", _Int64s),
     ("pre_start", _Int64s), ("pres", _Int64s), ("neg_start", _Int64s), ("negs", _Int64s),
-    ("add_start", _Int64s), ("adds", _Int64s), ("delete_start", _Int64s), ("deletes", _Int64s),
-    ("users_start", _Int64s), ("users", _Int64s), ("precondition_counts", _Int64s),
+    ("add_start", _Int32s), ("adds", _Int32s), ("delete_start", _Int64s), ("deletes", _Int64s),
+    ("users_start", _Int32s), ("users", _Int32s), ("precondition_counts", _Int32s),
     ("free_actions", _Int64s), ("n_free_actions", _COUNTS),
     ("goal_ids", _Int64s), ("n_goal_ids", _COUNTS),
     ("landmarks_used", _COUNTS), ("landmark_preferred", _COUNTS),
@@ -147,6 +148,11 @@ class _Arrays:
         self.kept.append(kept)
         return ctypes.cast(kept.buffer_info()[0], _Int64s)
 
+    def int32s(self, values: Iterable[int]) -> ctypes._Pointer[ctypes.c_int32]:
+        kept = array("i", values)
+        self.kept.append(kept)
+        return ctypes.cast(kept.buffer_info()[0], _Int32s)
+
     def bytes(self, values: Iterable[int] | bytes) -> ctypes._Pointer[ctypes.c_uint8]:
         kept = array("B", values)
         self.kept.append(kept)
@@ -155,12 +161,23 @@ class _Arrays:
     def csr(self, rows: Iterable[Iterable[int]]) -> tuple[ctypes._Pointer[ctypes.c_int64],
                                                           ctypes._Pointer[ctypes.c_int64]]:
         """Rows of ints as the offsets where each row starts (one more than rows) and their values."""
-        starts = [0]
-        values: list[int] = []
-        for row in rows:
-            values.extend(row)
-            starts.append(len(values))
+        starts, values = _csr(rows)
         return self.ints(starts), self.ints(values)
+
+    def csr32(self, rows: Iterable[Iterable[int]]) -> tuple[ctypes._Pointer[ctypes.c_int32],
+                                                            ctypes._Pointer[ctypes.c_int32]]:
+        """``csr`` in 32-bit ints."""
+        starts, values = _csr(rows)
+        return self.int32s(starts), self.int32s(values)
+
+
+def _csr(rows: Iterable[Iterable[int]]) -> tuple[list[int], list[int]]:
+    starts = [0]
+    values: list[int] = []
+    for row in rows:
+        values.extend(row)
+        starts.append(len(values))
+    return starts, values
 
 
 def _task_structure(evaluator: LandmarkEvaluator, arrays: _Arrays) -> _Task:
@@ -178,10 +195,10 @@ def _task_structure(evaluator: LandmarkEvaluator, arrays: _Arrays) -> _Task:
     structure.key_start, structure.key_actions = arrays.csr(by_key)
     structure.pre_start, structure.pres = arrays.csr(exploration.preconditions_of)
     structure.neg_start, structure.negs = arrays.csr(bits(action.pre_neg) for action in task.actions)
-    structure.add_start, structure.adds = arrays.csr(exploration.adds_of)
+    structure.add_start, structure.adds = arrays.csr32(exploration.adds_of)
     structure.delete_start, structure.deletes = arrays.csr(bits(action.delete) for action in task.actions)
-    structure.users_start, structure.users = arrays.csr(exploration.relevant_users)
-    structure.precondition_counts = arrays.ints(exploration.relevant_precondition_count)
+    structure.users_start, structure.users = arrays.csr32(exploration.relevant_users)
+    structure.precondition_counts = arrays.int32s(exploration.relevant_precondition_count)
     structure.free_actions = arrays.ints(exploration.relevant_free_actions)
     structure.n_free_actions = len(exploration.relevant_free_actions)
     structure.goal_ids, structure.n_goal_ids = arrays.ints(exploration.goal_ids), len(exploration.goal_ids)
