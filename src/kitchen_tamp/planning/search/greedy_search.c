@@ -10,11 +10,13 @@
    the Python search would, in the same order, and returns the same plan and
    counts.
 
-   It exists so that handing a search over costs a process no numpy: the module
-   compiled ahead of time from greedy_kernel.py needs numpy's import (about
-   0.05 s of CPU), more than a small search takes; this file builds into a
-   shared library that ctypes loads in about a millisecond
-   (native_greedy_search.py builds and calls it). Plain C99, no Python API.
+   It exists so that handing a search over costs a process neither numpy nor
+   numba: numba's kernel needs numpy's import (about 0.05 s of CPU) and numba's
+   (most of a second), more than most searches take; this file builds into a
+   shared library that ctypes loads in a few milliseconds (native_greedy.py
+   builds and calls it). Plain C99, no Python API. The arrays an evaluation
+   streams through (users, adds, precondition and unsettled counts) are 32-bit:
+   half the memory traffic on large tasks.
 
    A state is a row of state_bytes bytes (bit i: atom i). Evaluated states are
    rows of one growing table found again through an open-addressing hash table;

@@ -41,21 +41,20 @@ OUT_OF_MEMORY = 3
 _Int64s: type[ctypes._Pointer[ctypes.c_int64]] = ctypes.POINTER(ctypes.c_int64)
 _Bytes: type[ctypes._Pointer[ctypes.c_uint8]] = ctypes.POINTER(ctypes.c_uint8)
 _Int32s: type[ctypes._Pointer[ctypes.c_int32]] = ctypes.POINTER(ctypes.c_int32)
+_Int64 = ctypes.c_int64
 
-
-_COUNTS = ctypes.c_int64
 _TASK_FIELDS: list[tuple[str, Any]] = [
-    ("n_atoms", _COUNTS), ("n_actions", _COUNTS), ("state_bytes", _COUNTS), ("bucket_levels", _COUNTS),
+    ("n_atoms", _Int64), ("n_actions", _Int64), ("state_bytes", _Int64), ("bucket_levels", _Int64),
     ("root", _Bytes), ("goal", _Bytes), ("goal_neg", _Bytes),
-    ("unconditional", _Int64s), ("n_unconditional", _COUNTS),
+    ("unconditional", _Int64s), ("n_unconditional", _Int64),
     ("key_start", _Int64s), ("key_actions", _Int64s),
     ("pre_start", _Int64s), ("pres", _Int64s), ("neg_start", _Int64s), ("negs", _Int64s),
     ("add_start", _Int32s), ("adds", _Int32s), ("delete_start", _Int64s), ("deletes", _Int64s),
     ("users_start", _Int32s), ("users", _Int32s), ("precondition_counts", _Int32s),
-    ("free_actions", _Int64s), ("n_free_actions", _COUNTS),
-    ("goal_ids", _Int64s), ("n_goal_ids", _COUNTS),
-    ("landmarks_used", _COUNTS), ("landmark_preferred", _COUNTS),
-    ("n_landmarks", _COUNTS), ("landmark_atoms", _Int64s),
+    ("free_actions", _Int64s), ("n_free_actions", _Int64),
+    ("goal_ids", _Int64s), ("n_goal_ids", _Int64),
+    ("landmarks_used", _Int64), ("landmark_preferred", _Int64),
+    ("n_landmarks", _Int64), ("landmark_atoms", _Int64s),
     ("landmark_goal", _Bytes), ("natural", _Bytes), ("greedy_necessary", _Bytes),
     ("achievers_start", _Int64s), ("achievers", _Int64s),
 ]
@@ -71,13 +70,13 @@ class _Task(ctypes.Structure):
 class _Settings(ctypes.Structure):
     """``struct GreedySettings``."""
 
-    _fields_ = [("heuristics", _COUNTS), ("boost", _COUNTS), ("novelty", _COUNTS),
-                ("max_expansions", _COUNTS), ("deadline", ctypes.c_double)]
+    _fields_ = [("heuristics", _Int64), ("boost", _Int64), ("novelty", _Int64),
+                ("max_expansions", _Int64), ("deadline", ctypes.c_double)]
 
 
 _RESULT_FIELDS: list[tuple[str, Any]] = [
-    ("outcome", _COUNTS), ("goal_row", _COUNTS), ("expanded", _COUNTS), ("generated", _COUNTS),
-    ("evaluated", _COUNTS), ("n_rows", _COUNTS), ("parents", _Int64s), ("actions", _Int64s),
+    ("outcome", _Int64), ("goal_row", _Int64), ("expanded", _Int64), ("generated", _Int64),
+    ("evaluated", _Int64), ("n_rows", _Int64), ("parents", _Int64s), ("actions", _Int64s),
 ]
 """``struct GreedyResult``, field by field."""
 
