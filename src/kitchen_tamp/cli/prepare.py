@@ -127,7 +127,7 @@ def _compile_c_search() -> None:
     try:
         compile_library()
     except (OSError, subprocess.CalledProcessError) as error:  # no C compiler, or it failed
-        detail = error.stderr if isinstance(error, subprocess.CalledProcessError) else error
+        detail = (error.stderr or error) if isinstance(error, subprocess.CalledProcessError) else error
         reason = " ".join(str(detail).split())
         print(f"not compiled: the greedy search in C ({type(error).__name__}: {reason}); "
               "long searches will hand over to numba's JIT kernel, the same search")

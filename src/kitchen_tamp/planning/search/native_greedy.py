@@ -95,8 +95,9 @@ def library_path() -> Path:
 
 
 def compile_library() -> Path:
-    """Compile the search into ``library_path()`` unless it is there; libraries of earlier sources are
-    removed. Raises ``OSError`` (no compiler) or ``subprocess.CalledProcessError`` (it failed)."""
+    """Compile the search into ``library_path()`` unless it is there, with ``$CC`` (else the compiler
+    Python was built with, else ``cc``); libraries of earlier sources are removed. Raises ``OSError`` (no
+    compiler) or ``subprocess.CalledProcessError`` (it failed)."""
     import os  # here, not at load: a search handing over imports this module
     import subprocess
     import sysconfig
@@ -105,7 +106,7 @@ def compile_library() -> Path:
     if path.exists():
         return path
     path.parent.mkdir(parents=True, exist_ok=True)
-    compiler = (sysconfig.get_config_var("CC") or "cc").split()
+    compiler = (os.environ.get("CC") or sysconfig.get_config_var("CC") or "cc").split()
     partial = path.with_name(f"{path.stem}.{os.getpid()}.partial")
     try:
         subprocess.run([*compiler, *COMPILER_FLAGS, "-o", str(partial), str(SOURCE)], check=True,
