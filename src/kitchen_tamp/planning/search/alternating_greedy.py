@@ -42,6 +42,7 @@ from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.landmark_count import Evaluation, LandmarkEvaluator
 from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
+from kitchen_tamp.planning.search.partners import PARTNER_TURN_EVALUATIONS, PARTNERS, PARTNERS_AFTER_WORK
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
 
@@ -132,7 +133,8 @@ class _Progress:
 
 def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = True,
                               boost: int = DEFAULT_BOOST, novelty: bool = True,
-                              landmarks: bool = True, landmark_preferred: bool = True) -> SearchResult:
+                              landmarks: bool = True, landmark_preferred: bool = True,
+                              partners: bool = True) -> SearchResult:
     """GBFS with h_FF (and the landmark count), taking turns between all, preferred and novel states.
 
     ``landmarks=False`` drops the landmark count's queues (h_FF alone, as Fast
@@ -141,6 +143,8 @@ def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = 
     landmark count's (LAMA 2008's); ``landmark_preferred=False`` keeps h_FF's
     only, as today's lama-first does (its landmark heuristic has ``pref=false``),
     which expands several times more states on woodworking and depot here.
+    A lazy search with the landmark count that goes on long in C is joined by
+    other searches taking turns (``partners``); ``partners=False`` keeps it alone.
     """
     evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"), landmarks, landmark_preferred)
     root = evaluator.root()
@@ -148,8 +152,10 @@ def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = 
         return dead_root_result(task, "gbfs", budget)
     novel = Novelty(novelty)
     novel.is_novel(task.initial_state)
-    search = _lazy if lazy else _eager
-    return search(task, evaluator, novel, budget, AlternatingQueues(boost, 2 if evaluator.count else 1))
+    heuristics = 2 if evaluator.count else 1
+    if lazy:
+        return _lazy(task, evaluator, novel, budget, AlternatingQueues(boost, heuristics), partners)
+    return _eager(task, evaluator, novel, budget, AlternatingQueues(boost, heuristics))
 
 
 def _values(evaluation: Evaluation, heuristics: int) -> tuple[float, ...]:
@@ -198,13 +204,13 @@ def _eager(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sea
 
 
 def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: SearchBudget,
-          queues: AlternatingQueues[tuple[State | None, State]]) -> SearchResult:
+          queues: AlternatingQueues[tuple[State | None, State]], partners: bool) -> SearchResult:
     root = task.initial_state
     goal, goal_neg = task.goal, task.goal_neg
     successors, heuristics = task.successor_indices, queues.heuristics
     closed: dict[State, State | None] = {}  # each evaluated state's parent
     accepted: dict[State, int] = {}  # each expanded state's accepted landmarks
-    handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget)
+    handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget, partners)
     if (handed_over := handover.search()) is not None:
         return handed_over
     clock = time.process_time()
@@ -258,8 +264,10 @@ class _Handover:
     numba's JIT kernel once the evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``),
     which has imported numba already."""
 
-    def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
+    def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
+                 partners: bool) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
+        self.partners = partners
         self.due_at = time.process_time() + loading.NATIVE_HANDOVER_AFTER_SECONDS
         self.native_looked_for = False
 
@@ -282,7 +290,12 @@ class _Handover:
             if library is not None:
                 from kitchen_tamp.planning.search.native_greedy import native_lazy_search
 
-                return native_lazy_search(self.evaluator, self.novelty, self.boost, self.budget, library)
+                evaluator = self.evaluator
+                if not self.partners or evaluator.count is None:
+                    return native_lazy_search(evaluator, self.novelty, self.boost, self.budget, library)
+                alone = -(-PARTNERS_AFTER_WORK // max(1, evaluator.work_per_evaluation))
+                return native_lazy_search(evaluator, self.novelty, self.boost, self.budget, library, PARTNERS,
+                                          alone, PARTNER_TURN_EVALUATIONS)
         if self.evaluator.compiled is None:
             return None
         from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy and numba

@@ -21,7 +21,12 @@
    A state is a row of state_bytes bytes (bit i: atom i). Evaluated states are
    rows of one growing table found again through an open-addressing hash table;
    a queued entry is a (parent row, action) pair whose child is computed again
-   when it is taken out, as Fast Downward's lazy search does. */
+   when it is taken out, as Fast Downward's lazy search does.
+
+   greedy_portfolio runs several such searches of one task, with other choices
+   of heuristics and queues (partners.py), taking turns counted in evaluations;
+   each keeps its state (struct Search) between turns. One search alone is the
+   portfolio of one. */
 
 #define _POSIX_C_SOURCE 199309L /* clock_gettime under -std=c99 */
 
@@ -34,7 +39,9 @@ typedef int64_t i64;
 typedef uint8_t u8;
 typedef int32_t i32; /* the task's indices and counts: half the memory an evaluation streams through */
 
-enum { SOLVED = 0, UNSOLVABLE = 1, OUT_OF_BUDGET = 2, OUT_OF_MEMORY = 3 };
+enum { SOLVED = 0, UNSOLVABLE = 1, OUT_OF_BUDGET = 2, OUT_OF_MEMORY = 3, RUNNING = 4 };
+
+#define PORTFOLIO_MAX 8 /* searches taking turns at most */
 
 #define ORDER_BITS 40     /* bits of a queue key below h: the push's number */
 #define SEQUENCE_BITS 32  /* bits of an exploration heap key below the cost: the offer's number */
@@ -484,11 +491,41 @@ void greedy_result_free(struct GreedyResult *result) {
     result->parents = result->actions = NULL;
 }
 
-/* The search from t->root; the outcome (also in result->outcome). */
-i64 greedy_search(const struct GreedyTask *t, const struct GreedySettings *s, struct GreedyResult *result) {
+/* One search from t->root, its state kept between turns so that several can take turns (greedy_portfolio). */
+struct Search {
+    const struct GreedyTask *t;
+    struct GreedySettings s;
+    struct Evaluation e;
+    struct Rows r;
+    struct Queues q;
+    i64 *preferred_stamp, *applicable;
+    u8 *child, *seen, *root_accepted;
+    i64 outcome, goal_row, expanded, generated, evaluated, best_ff, best_landmarks, stamp;
+};
+
+static void search_free(struct Search *x) {
+    struct Evaluation *e = &x->e;
+    free(e->cost); free(e->supporter); free(e->unsettled); free(e->settled_sum); free(e->heap);
+    free(e->offered_atoms); free(e->next_offer); free(e->level_first); free(e->level_last); free(e->plan);
+    free(e->helpful); free(e->marked_atoms); free(e->stack); free(e->targets); free(e->found); free(e->chosen);
+    free(e->marked); free(e->unaccepted); free(e->needed);
+    free(x->preferred_stamp); free(x->applicable); free(x->child); free(x->seen); free(x->root_accepted);
+    free(x->r.states); free(x->r.accepted); free(x->r.hashes); free(x->r.table); free(x->r.parents);
+    free(x->r.actions);
+    free(x->q.parents); free(x->q.actions); free(x->q.sizes); free(x->q.priorities);
+    for (i64 queue = 0; queue < x->q.n; queue++) free(x->q.heaps[queue]);
+    free(x);
+}
+
+/* A search with its root evaluated and queued; NULL when memory ran out. */
+static struct Search *search_new(const struct GreedyTask *t, const struct GreedySettings *s) {
+    struct Search *x = calloc(1, sizeof(struct Search));
+    if (!x) return NULL;
     i64 bytes = t->state_bytes, n_atoms = t->n_atoms, n_actions = t->n_actions;
     i64 offers = n_atoms + t->add_start[n_actions] + 1;
-    struct Evaluation e = {
+    x->t = t;
+    x->s = *s;
+    x->e = (struct Evaluation){
         .cost = zeroed(n_atoms, sizeof(i64)), .supporter = zeroed(n_atoms, sizeof(i64)),
         .unsettled = zeroed(n_actions, sizeof(i32)), .settled_sum = zeroed(n_actions, sizeof(i64)),
         .heap = zeroed(offers, sizeof(i64)), .offered_atoms = zeroed(offers, sizeof(i64)),
@@ -501,90 +538,107 @@ i64 greedy_search(const struct GreedyTask *t, const struct GreedySettings *s, st
         .chosen = zeroed(n_actions, 1), .marked = zeroed(n_atoms, 1),
         .unaccepted = zeroed(bytes, 1), .needed = zeroed(bytes, 1),
     };
-    i64 *preferred_stamp = zeroed(n_actions, sizeof(i64)), *applicable = zeroed(n_actions, sizeof(i64));
-    u8 *child = zeroed(bytes, 1), *seen = zeroed(bytes, 1), *root_accepted = zeroed(bytes, 1);
-    struct Rows r = {.bytes = bytes, .count = 0, .capacity = 1024, .table_size = 2048};
-    r.states = zeroed(r.capacity * bytes, 1);
-    r.accepted = zeroed(r.capacity * bytes, 1);
-    r.parents = zeroed(r.capacity, sizeof(i64));
-    r.actions = zeroed(r.capacity, sizeof(i64));
-    r.hashes = zeroed(r.capacity, sizeof(i64));
-    r.table = zeroed(r.table_size, sizeof(i64));
-    struct Queues q = {.n = 2 * s->heuristics + 1, .capacity = 4096, .count = 0};
-    q.parents = zeroed(q.capacity, sizeof(i64));
-    q.actions = zeroed(q.capacity, sizeof(i64));
-    q.sizes = zeroed(q.n, sizeof(i64));
-    q.priorities = zeroed(q.n, sizeof(i64));
-    int ready = e.cost && e.supporter && e.unsettled && e.settled_sum && e.heap && e.offered_atoms &&
-                e.next_offer && e.level_first && e.level_last && e.plan && e.helpful && e.marked_atoms && e.stack &&
-                e.targets && e.found && e.chosen && e.marked && e.unaccepted && e.needed && preferred_stamp &&
-                applicable && child && seen && root_accepted && r.states && r.accepted && r.parents && r.actions &&
-                r.hashes && r.table && q.parents && q.actions && q.sizes && q.priorities;
-    for (i64 queue = 0; queue < q.n; queue++) {
-        q.heaps[queue] = zeroed(q.capacity, sizeof(i64));
-        ready = ready && q.heaps[queue];
+    struct Evaluation *e = &x->e;
+    x->preferred_stamp = zeroed(n_actions, sizeof(i64));
+    x->applicable = zeroed(n_actions, sizeof(i64));
+    x->child = zeroed(bytes, 1);
+    x->seen = zeroed(bytes, 1);
+    x->root_accepted = zeroed(bytes, 1);
+    struct Rows *r = &x->r;
+    *r = (struct Rows){.bytes = bytes, .count = 0, .capacity = 1024, .table_size = 2048};
+    r->states = zeroed(r->capacity * bytes, 1);
+    r->accepted = zeroed(r->capacity * bytes, 1);
+    r->parents = zeroed(r->capacity, sizeof(i64));
+    r->actions = zeroed(r->capacity, sizeof(i64));
+    r->hashes = zeroed(r->capacity, sizeof(i64));
+    r->table = zeroed(r->table_size, sizeof(i64));
+    struct Queues *q = &x->q;
+    *q = (struct Queues){.n = 2 * s->heuristics + 1, .capacity = 4096, .count = 0};
+    q->parents = zeroed(q->capacity, sizeof(i64));
+    q->actions = zeroed(q->capacity, sizeof(i64));
+    q->sizes = zeroed(q->n, sizeof(i64));
+    q->priorities = zeroed(q->n, sizeof(i64));
+    int ready = e->cost && e->supporter && e->unsettled && e->settled_sum && e->heap && e->offered_atoms &&
+                e->next_offer && e->level_first && e->level_last && e->plan && e->helpful && e->marked_atoms &&
+                e->stack && e->targets && e->found && e->chosen && e->marked && e->unaccepted && e->needed &&
+                x->preferred_stamp && x->applicable && x->child && x->seen && x->root_accepted && r->states &&
+                r->accepted && r->parents && r->actions && r->hashes && r->table && q->parents && q->actions &&
+                q->sizes && q->priorities;
+    for (i64 queue = 0; queue < q->n; queue++) {
+        q->heaps[queue] = zeroed(q->capacity, sizeof(i64));
+        ready = ready && q->heaps[queue];
     }
-    i64 outcome = OUT_OF_MEMORY, goal_row = -1, expanded = 0, generated = 1, evaluated = 0;
-    if (!ready) goto done;
-    for (i64 slot = 0; slot < r.table_size; slot++) r.table[slot] = -1;
-    for (i64 action = 0; action < n_actions; action++) preferred_stamp[action] = -1;
-    if (s->novelty) memcpy(seen, t->root, (size_t)bytes);
-    else memset(seen, 255, (size_t)bytes);
+    if (!ready) {
+        search_free(x);
+        return NULL;
+    }
+    for (i64 slot = 0; slot < r->table_size; slot++) r->table[slot] = -1;
+    for (i64 action = 0; action < n_actions; action++) x->preferred_stamp[action] = -1;
+    if (s->novelty) memcpy(x->seen, t->root, (size_t)bytes);
+    else memset(x->seen, 255, (size_t)bytes);
+    accept(t, t->root, x->root_accepted, x->root_accepted, 1);
+    evaluate(t, e, t->root, x->root_accepted, 0, x->preferred_stamp, &x->best_ff, &x->best_landmarks);
+    q->parents[0] = -1;
+    q->actions[0] = -1;
+    push(q, 0, x->best_ff << ORDER_BITS);
+    if (s->heuristics == 2) push(q, 2, x->best_landmarks << ORDER_BITS);
+    q->count = 1;
+    x->outcome = RUNNING;
+    x->goal_row = -1;
+    x->generated = 1;
+    return x;
+}
 
-    accept(t, t->root, root_accepted, root_accepted, 1);
-    i64 best_ff, best_landmarks;
-    evaluate(t, &e, t->root, root_accepted, 0, preferred_stamp, &best_ff, &best_landmarks);
-    q.parents[0] = -1;
-    q.actions[0] = -1;
-    push(&q, 0, best_ff << ORDER_BITS);
-    if (s->heuristics == 2) push(&q, 2, best_landmarks << ORDER_BITS);
-    q.count = 1;
-    i64 stamp = 0, check_at = 0;
-    for (;;) {
+/* Takes the search on until it ends (its outcome) or has evaluated `until_evaluated` states (RUNNING),
+   taking the deadline and x->s.max_expansions as its budget. */
+static i64 search_run(struct Search *x, i64 until_evaluated) {
+    const struct GreedyTask *t = x->t;
+    const struct GreedySettings *s = &x->s;
+    struct Evaluation *e = &x->e;
+    struct Rows *r = &x->r;
+    struct Queues *q = &x->q;
+    i64 bytes = t->state_bytes, check_at = x->expanded;
+    u8 *child = x->child;
+    while (x->evaluated < until_evaluated) {
         i64 queued = 0;
-        for (i64 queue = 0; queue < q.n; queue++) queued += q.sizes[queue];
-        if (queued == 0) {
-            outcome = UNSOLVABLE;
-            break;
-        }
-        if (expanded >= check_at) {
-            if ((s->max_expansions >= 0 && expanded >= s->max_expansions) ||
-                (s->deadline >= 0.0 && monotonic_seconds() > s->deadline)) {
-                outcome = OUT_OF_BUDGET;
-                break;
-            }
-            check_at = s->deadline >= 0.0 ? expanded + CLOCK_EVERY : INT64_MAX;
+        for (i64 queue = 0; queue < q->n; queue++) queued += q->sizes[queue];
+        if (queued == 0) return x->outcome = UNSOLVABLE;
+        if (x->expanded >= check_at) {
+            if ((s->max_expansions >= 0 && x->expanded >= s->max_expansions) ||
+                (s->deadline >= 0.0 && monotonic_seconds() > s->deadline))
+                return x->outcome = OUT_OF_BUDGET;
+            check_at = s->deadline >= 0.0 ? x->expanded + CLOCK_EVERY : INT64_MAX;
             if (s->max_expansions >= 0 && s->max_expansions < check_at) check_at = s->max_expansions;
         }
         i64 side = -1;
-        for (i64 queue = 0; queue < q.n; queue++)
-            if (q.sizes[queue] > 0 && (side < 0 || q.priorities[queue] < q.priorities[side])) side = queue;
-        q.priorities[side] += 1;
-        i64 entry = q.heaps[side][0] & ((((i64)1) << ORDER_BITS) - 1);
-        q.sizes[side] = heap_pop(q.heaps[side], q.sizes[side]);
-        i64 parent = q.parents[entry], action = q.actions[entry];
+        for (i64 queue = 0; queue < q->n; queue++)
+            if (q->sizes[queue] > 0 && (side < 0 || q->priorities[queue] < q->priorities[side])) side = queue;
+        q->priorities[side] += 1;
+        i64 entry = q->heaps[side][0] & ((((i64)1) << ORDER_BITS) - 1);
+        q->sizes[side] = heap_pop(q->heaps[side], q->sizes[side]);
+        i64 parent = q->parents[entry], action = q->actions[entry];
         if (parent < 0) memcpy(child, t->root, (size_t)bytes);
-        else apply(t, r.states + parent * bytes, action, child);
+        else apply(t, r->states + parent * bytes, action, child);
         i64 value = state_hash(child, bytes);
-        i64 slot = find_slot(&r, child, value);
-        if (r.table[slot] >= 0) continue; /* evaluated already */
-        if (r.count == r.capacity) {
-            if (!grow_rows(&r)) goto done;
-            slot = find_slot(&r, child, value);
+        i64 slot = find_slot(r, child, value);
+        if (r->table[slot] >= 0) continue; /* evaluated already */
+        if (r->count == r->capacity) {
+            if (!grow_rows(r)) return x->outcome = OUT_OF_MEMORY;
+            slot = find_slot(r, child, value);
         }
-        i64 node = r.count++;
-        r.table[slot] = node;
-        u8 *state = r.states + node * bytes, *accepted = r.accepted + node * bytes;
+        i64 node = r->count++;
+        r->table[slot] = node;
+        u8 *state = r->states + node * bytes, *accepted = r->accepted + node * bytes;
         memcpy(state, child, (size_t)bytes);
-        r.parents[node] = parent;
-        r.actions[node] = action;
-        r.hashes[node] = value;
-        if (parent < 0) memcpy(accepted, root_accepted, (size_t)bytes);
-        else accept(t, state, r.accepted + parent * bytes, accepted, 0);
-        stamp += 1;
+        r->parents[node] = parent;
+        r->actions[node] = action;
+        r->hashes[node] = value;
+        if (parent < 0) memcpy(accepted, x->root_accepted, (size_t)bytes);
+        else accept(t, state, r->accepted + parent * bytes, accepted, 0);
+        x->stamp += 1;
         i64 h_ff, h_landmarks;
-        evaluate(t, &e, state, accepted, stamp, preferred_stamp, &h_ff, &h_landmarks);
-        evaluated += 1;
+        evaluate(t, e, state, accepted, x->stamp, x->preferred_stamp, &h_ff, &h_landmarks);
+        x->evaluated += 1;
         if (h_ff < 0) continue;
         int is_goal = 1;
         for (i64 index = 0; index < bytes; index++) {
@@ -594,64 +648,107 @@ i64 greedy_search(const struct GreedyTask *t, const struct GreedySettings *s, st
             }
         }
         if (is_goal) {
-            outcome = SOLVED;
-            goal_row = node;
-            break;
+            x->goal_row = node;
+            return x->outcome = SOLVED;
         }
-        int improved = h_ff < best_ff || (s->heuristics == 2 && h_landmarks < best_landmarks);
-        if (h_ff < best_ff) best_ff = h_ff;
-        if (h_landmarks < best_landmarks) best_landmarks = h_landmarks;
+        int improved = h_ff < x->best_ff || (s->heuristics == 2 && h_landmarks < x->best_landmarks);
+        if (h_ff < x->best_ff) x->best_ff = h_ff;
+        if (h_landmarks < x->best_landmarks) x->best_landmarks = h_landmarks;
         if (improved) {
-            for (i64 queue = 1; queue < q.n; queue += 2) q.priorities[queue] -= s->boost; /* the preferred queues */
-            q.priorities[q.n - 1] -= s->boost;                                           /* the novel queue */
+            for (i64 queue = 1; queue < q->n; queue += 2) q->priorities[queue] -= s->boost; /* the preferred queues */
+            q->priorities[q->n - 1] -= s->boost;                                            /* the novel queue */
         }
-        expanded += 1;
-        i64 count = applicable_actions(t, state, applicable);
+        x->expanded += 1;
+        i64 count = applicable_actions(t, state, x->applicable);
         for (i64 index = 0; index < count; index++) {
-            i64 successor = applicable[index];
+            i64 successor = x->applicable[index];
             apply(t, state, successor, child);
-            if (r.table[find_slot(&r, child, state_hash(child, bytes))] >= 0) continue;
-            generated += 1;
+            if (r->table[find_slot(r, child, state_hash(child, bytes))] >= 0) continue;
+            x->generated += 1;
             int novel = 0;
             if (s->novelty) {
                 for (i64 byte = 0; byte < bytes; byte++) {
-                    if (child[byte] & (u8)(255 - seen[byte])) {
+                    if (child[byte] & (u8)(255 - x->seen[byte])) {
                         novel = 1;
                         break;
                     }
                 }
                 if (novel)
-                    for (i64 byte = 0; byte < bytes; byte++) seen[byte] |= child[byte];
+                    for (i64 byte = 0; byte < bytes; byte++) x->seen[byte] |= child[byte];
             }
-            if (q.count == q.capacity && !grow_queues(&q)) goto done;
-            i64 order = q.count++;
-            q.parents[order] = node;
-            q.actions[order] = successor;
-            int preferred = preferred_stamp[successor] == stamp;
-            push(&q, 0, h_ff << ORDER_BITS | order);
-            if (preferred) push(&q, 1, h_ff << ORDER_BITS | order);
+            if (q->count == q->capacity && !grow_queues(q)) return x->outcome = OUT_OF_MEMORY;
+            i64 order = q->count++;
+            q->parents[order] = node;
+            q->actions[order] = successor;
+            int preferred = x->preferred_stamp[successor] == x->stamp;
+            push(q, 0, h_ff << ORDER_BITS | order);
+            if (preferred) push(q, 1, h_ff << ORDER_BITS | order);
             if (s->heuristics == 2) {
-                push(&q, 2, h_landmarks << ORDER_BITS | order);
-                if (preferred) push(&q, 3, h_landmarks << ORDER_BITS | order);
+                push(q, 2, h_landmarks << ORDER_BITS | order);
+                if (preferred) push(q, 3, h_landmarks << ORDER_BITS | order);
             }
-            if (novel) push(&q, q.n - 1, h_ff << ORDER_BITS | order);
+            if (novel) push(q, q->n - 1, h_ff << ORDER_BITS | order);
+        }
+    }
+    return RUNNING;
+}
+
+/* Several searches of one task taking turns (alternating_greedy's portfolio): the first alone until it
+   has evaluated `alone` states, then each in turn for `turn` evaluations, in the order given, until one
+   ends. Every search is complete, so one that runs out of states proves the task unsolvable. The counts
+   are the sums over the searches; the rows those of the search that ended (*ended: its index). Each
+   search's max_expansions is what the others have left of `settings[0].max_expansions`. */
+i64 greedy_portfolio(const struct GreedyTask *const *tasks, const struct GreedySettings *settings, i64 n,
+                     i64 alone, i64 turn, struct GreedyResult *result, i64 *ended) {
+    struct Search *searches[PORTFOLIO_MAX];
+    i64 started = 0, outcome = OUT_OF_MEMORY, winner = 0, total_limit = settings[0].max_expansions;
+    *ended = 0;
+    if (n < 1 || n > PORTFOLIO_MAX) n = n < 1 ? 1 : PORTFOLIO_MAX;
+    for (i64 k = 0; k < n; k++) searches[k] = NULL;
+    searches[0] = search_new(tasks[0], &settings[0]);
+    if (!searches[0]) goto done;
+    started = 1;
+    for (i64 round = 0;; round++) {
+        for (i64 k = 0; k < n; k++) {
+            if (k >= started) {
+                if (round == 0) break; /* the first alone in the first round */
+                searches[k] = search_new(tasks[k], &settings[k]);
+                if (!searches[k]) goto done;
+                started = k + 1;
+            }
+            struct Search *x = searches[k];
+            if (total_limit >= 0) { /* what the others have not expanded */
+                i64 others = 0;
+                for (i64 j = 0; j < started; j++)
+                    if (j != k) others += searches[j]->expanded;
+                x->s.max_expansions = total_limit - others;
+            }
+            outcome = search_run(x, round == 0 ? alone : x->evaluated + turn);
+            if (outcome != RUNNING) {
+                winner = k;
+                goto done;
+            }
         }
     }
 done:
     result->outcome = outcome;
-    result->goal_row = goal_row;
-    result->expanded = expanded;
-    result->generated = generated;
-    result->evaluated = evaluated;
-    result->n_rows = r.count;
-    result->parents = r.parents;
-    result->actions = r.actions;
-    free(e.cost); free(e.supporter); free(e.unsettled); free(e.settled_sum); free(e.heap); free(e.offered_atoms);
-    free(e.next_offer); free(e.level_first); free(e.level_last); free(e.plan); free(e.helpful); free(e.marked_atoms);
-    free(e.stack); free(e.targets); free(e.found); free(e.chosen); free(e.marked); free(e.unaccepted);
-    free(e.needed); free(preferred_stamp); free(applicable); free(child); free(seen); free(root_accepted);
-    free(r.states); free(r.accepted); free(r.hashes); free(r.table);
-    free(q.parents); free(q.actions); free(q.sizes); free(q.priorities);
-    for (i64 queue = 0; queue < q.n; queue++) free(q.heaps[queue]);
+    result->goal_row = -1;
+    result->expanded = result->generated = result->evaluated = result->n_rows = 0;
+    result->parents = result->actions = NULL;
+    for (i64 k = 0; k < started; k++) {
+        result->expanded += searches[k]->expanded;
+        result->generated += searches[k]->generated;
+        result->evaluated += searches[k]->evaluated;
+    }
+    *ended = winner;
+    if (started > winner && searches[winner]) {
+        struct Search *x = searches[winner];
+        result->goal_row = x->goal_row;
+        result->n_rows = x->r.count;
+        result->parents = x->r.parents; /* handed to the result: greedy_result_free frees them */
+        result->actions = x->r.actions;
+        x->r.parents = x->r.actions = NULL;
+    }
+    for (i64 k = 0; k < started; k++) search_free(searches[k]);
     return outcome;
 }

@@ -20,7 +20,7 @@ from __future__ import annotations
 import ctypes
 import hashlib
 from array import array
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +28,7 @@ from kitchen_tamp.planning.heuristics import BUCKET_LEVELS
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
 from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, UNSOLVABLE
+from kitchen_tamp.planning.search.partners import Partner
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_from_rows
 from kitchen_tamp.planning.task import bits
 
@@ -129,9 +130,10 @@ def load_library() -> ctypes.CDLL | None:
         library = ctypes.CDLL(str(path))
     except OSError:
         return None
-    library.greedy_search.argtypes = [ctypes.POINTER(_Task), ctypes.POINTER(_Settings),
-                                      ctypes.POINTER(_Result)]
-    library.greedy_search.restype = ctypes.c_int64
+    library.greedy_portfolio.argtypes = [ctypes.POINTER(ctypes.POINTER(_Task)), ctypes.POINTER(_Settings),
+                                         _Int64, _Int64, _Int64, ctypes.POINTER(_Result),
+                                         ctypes.POINTER(_Int64)]
+    library.greedy_portfolio.restype = ctypes.c_int64
     library.greedy_result_free.argtypes = [ctypes.POINTER(_Result)]
     library.greedy_result_free.restype = None
     return library
@@ -220,16 +222,36 @@ def _task_structure(evaluator: LandmarkEvaluator, arrays: _Arrays) -> _Task:
 
 
 def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
-                       library: ctypes.CDLL) -> SearchResult:
-    """``alternating_greedy._lazy`` from the root, in the C library (``load_library``'s)."""
+                       library: ctypes.CDLL, partners: Sequence[Partner] = (),
+                       alone_evaluations: int = 0, turn_evaluations: int = 1) -> SearchResult:
+    """``alternating_greedy._lazy`` from the root, in the C library (``load_library``'s).
+
+    With ``partners``, the search goes alone for ``alone_evaluations`` evaluations; then it and the
+    partners (each from its own root, on the same task) take turns of ``turn_evaluations`` evaluations
+    until one ends: its plan, or its proof that there is none, is the answer, with the counts summed
+    over all of them. A partner with landmarks needs ``evaluator`` to have the landmark graph."""
     task = evaluator.exploration.task
     arrays = _Arrays()
     structure = _task_structure(evaluator, arrays)
-    settings = _Settings(2 if evaluator.count is not None else 1, boost, novelty,
-                         -1 if budget.max_expansions is None else budget.max_expansions,
-                         -1.0 if budget.deadline is None else budget.deadline)
+    deadline = -1.0 if budget.deadline is None else budget.deadline
+    max_expansions = -1 if budget.max_expansions is None else budget.max_expansions
+    structures = [structure]
+    settings = [_Settings(2 if evaluator.count is not None else 1, boost, novelty, max_expansions, deadline)]
+    for partner in partners:
+        if partner.landmarks and evaluator.count is None:
+            raise ValueError("a partner with the landmark count needs an evaluator with the landmark graph")
+        copy = _Task.from_buffer_copy(structure)
+        copy.landmarks_used = int(partner.landmarks)
+        copy.landmark_preferred = int(partner.landmarks and partner.landmark_preferred)
+        structures.append(copy)
+        heuristics = 2 if partner.landmarks else 1
+        settings.append(_Settings(heuristics, boost, partner.novelty, max_expansions, deadline))
+    tasks = (ctypes.POINTER(_Task) * len(structures))(*(ctypes.pointer(each) for each in structures))
     result = _Result()
-    outcome = library.greedy_search(ctypes.byref(structure), ctypes.byref(settings), ctypes.byref(result))
+    ended = _Int64()
+    outcome = library.greedy_portfolio(tasks, (_Settings * len(settings))(*settings), len(structures),
+                                       alone_evaluations if partners else _ALL, max(1, turn_evaluations),
+                                       ctypes.byref(result), ctypes.byref(ended))
     try:
         if outcome == OUT_OF_MEMORY:
             raise MemoryError(f"the greedy search ran out of memory after {result.expanded} expansions")
@@ -244,3 +266,7 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
                             unsolvable_message(task, result.n_rows))
     finally:
         library.greedy_result_free(ctypes.byref(result))
+
+
+_ALL = 2**63 - 1
+"""Evaluations without end: the main search alone to its end."""

@@ -1,0 +1,53 @@
+"""The searches that take turns with a long greedy search: a portfolio inside one process.
+
+Greedy best-first search is fast when its heuristics lead it and lost when they
+do not: which of the landmark count and the novel queue misleads it differs
+from problem to problem, and a search that has gone wrong seldom comes back.
+So a lazy search that has not ended after ``PARTNERS_AFTER_WORK`` is joined by
+``PARTNERS``, searches of the same task from its root with other choices of
+heuristics and queues, and they take turns of ``PARTNER_TURN_EVALUATIONS``
+evaluations until one of them finds a plan or proves there is none (every one
+of them is complete). A problem the main search solves before then is
+untouched; one it would solve later takes at most about four times as long
+from then on; one a partner solves takes about four times the partner's time.
+Fast Downward's portfolios (Stone Soup) run configurations one after another
+in fixed time slices; here they share the time from the moment the partners
+join, so that none is cut off. The turns are counted in evaluations, not
+seconds, so the same task gets the same plan on any machine.
+
+The searches take turns in C (``greedy_search.c``'s ``greedy_portfolio``),
+where each keeps its own state between turns. Without a C compiler the lazy
+search hands over to numba's kernel, which runs the main search alone.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+
+class Partner(NamedTuple):
+    """A search that takes turns with the main one: which heuristics and queues it has."""
+
+    landmarks: bool
+    landmark_preferred: bool
+    novelty: bool
+
+
+PARTNERS = (
+    Partner(landmarks=False, landmark_preferred=False, novelty=True),
+    Partner(landmarks=False, landmark_preferred=False, novelty=False),
+    Partner(landmarks=True, landmark_preferred=True, novelty=False),
+)
+"""The searches that take turns with a long lazy search in C: with the main search (h_FF, the landmark
+count and the novel queue), the four ways of having the landmark count and the novel queue or not. h_FF
+with the novel queue solves freecell-19 of the IPC in a tenth of the main search's time, h_FF alone
+pegsol-30 (which the main search does not solve in a minute), the landmark count without the novel queue
+depot-20 (the same); see docs/planner.md, "Searches taking turns"."""
+
+PARTNERS_AFTER_WORK = 1_500_000_000
+"""Evaluations times ``LandmarkEvaluator.work_per_evaluation`` after which the partners join: about 3-7 s
+of the C search's CPU, beyond every problem of ``benchmarks/ipc`` (pegsol-28, the longest, is about a third
+of it). A count, not a clock, so that the same task always gets the same plan."""
+
+PARTNER_TURN_EVALUATIONS = 1000
+"""Evaluations each search makes in its turn once the partners have joined."""
