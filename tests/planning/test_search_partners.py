@@ -134,3 +134,9 @@ def test_a_gbfs_search_takes_its_partners_after_the_work_set(library: object,
                                  partners_module.PARTNER_TURN_EVALUATIONS)
     assert winner != 0
     assert together.plan == alone_runs[winner].plan and together.evaluated == sum(evaluations)
+
+
+def test_more_partners_than_the_c_search_holds_are_refused(library: object) -> None:
+    task = _load("pegsol", "task13.pddl")
+    with pytest.raises(ValueError, match="at most 7 partners"):
+        _portfolio(task, library, PARTNERS * 3, 10, 10)

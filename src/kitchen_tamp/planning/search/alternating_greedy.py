@@ -262,7 +262,8 @@ class _Handover:
     evaluator's next state would take it to the JIT exploration (``LandmarkEvaluator.compiles_next``), the
     search in C is looked for (``native_greedy``: no numpy, no numba). Without it, the search goes over to
     numba's JIT kernel once the evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``),
-    which has imported numba already."""
+    which has imported numba already. In C, a search with the landmark count is joined by ``PARTNERS``
+    after ``PARTNERS_AFTER_WORK`` (``partners.py``) unless ``partners`` is False."""
 
     def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
                  partners: bool) -> None:

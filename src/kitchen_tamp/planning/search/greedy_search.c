@@ -699,11 +699,10 @@ static i64 search_run(struct Search *x, i64 until_evaluated) {
    are the sums over the searches; the rows those of the search that ended (*ended: its index). Each
    search's max_expansions is what the others have left of `settings[0].max_expansions`. */
 i64 greedy_portfolio(const struct GreedyTask *const *tasks, const struct GreedySettings *settings, i64 n,
-                     i64 alone, i64 turn, struct GreedyResult *result, i64 *ended) {
+                     i64 alone, i64 turn, struct GreedyResult *result) {
     struct Search *searches[PORTFOLIO_MAX];
     i64 started = 0, outcome = OUT_OF_MEMORY, winner = 0, total_limit = settings[0].max_expansions;
-    *ended = 0;
-    if (n < 1 || n > PORTFOLIO_MAX) n = n < 1 ? 1 : PORTFOLIO_MAX;
+    if (n < 1 || n > PORTFOLIO_MAX) return OUT_OF_MEMORY; /* the caller keeps to PORTFOLIO_MAX */
     for (i64 k = 0; k < n; k++) searches[k] = NULL;
     searches[0] = search_new(tasks[0], &settings[0]);
     if (!searches[0]) goto done;
@@ -740,7 +739,6 @@ done:
         result->generated += searches[k]->generated;
         result->evaluated += searches[k]->evaluated;
     }
-    *ended = winner;
     if (started > winner && searches[winner]) {
         struct Search *x = searches[winner];
         result->goal_row = x->goal_row;

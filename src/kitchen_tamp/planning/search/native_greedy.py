@@ -38,6 +38,8 @@ COMPILER_FLAGS = ("-O2", "-std=c99", "-shared", "-fPIC")
 computes with integers only)."""
 OUT_OF_MEMORY = 3
 """The C search's outcome when an allocation failed."""
+PORTFOLIO_MAX = 8
+"""``greedy_search.c``'s PORTFOLIO_MAX: the most searches that take turns."""
 
 _Int64s: type[ctypes._Pointer[ctypes.c_int64]] = ctypes.POINTER(ctypes.c_int64)
 _Bytes: type[ctypes._Pointer[ctypes.c_uint8]] = ctypes.POINTER(ctypes.c_uint8)
@@ -131,8 +133,7 @@ def load_library() -> ctypes.CDLL | None:
     except OSError:
         return None
     library.greedy_portfolio.argtypes = [ctypes.POINTER(ctypes.POINTER(_Task)), ctypes.POINTER(_Settings),
-                                         _Int64, _Int64, _Int64, ctypes.POINTER(_Result),
-                                         ctypes.POINTER(_Int64)]
+                                         _Int64, _Int64, _Int64, ctypes.POINTER(_Result)]
     library.greedy_portfolio.restype = ctypes.c_int64
     library.greedy_result_free.argtypes = [ctypes.POINTER(_Result)]
     library.greedy_result_free.restype = None
@@ -237,6 +238,8 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
     max_expansions = -1 if budget.max_expansions is None else budget.max_expansions
     structures = [structure]
     settings = [_Settings(2 if evaluator.count is not None else 1, boost, novelty, max_expansions, deadline)]
+    if len(partners) >= PORTFOLIO_MAX:
+        raise ValueError(f"at most {PORTFOLIO_MAX - 1} partners take turns with a search")
     for partner in partners:
         if partner.landmarks and evaluator.count is None:
             raise ValueError("a partner with the landmark count needs an evaluator with the landmark graph")
@@ -248,10 +251,9 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
         settings.append(_Settings(heuristics, boost, partner.novelty, max_expansions, deadline))
     tasks = (ctypes.POINTER(_Task) * len(structures))(*(ctypes.pointer(each) for each in structures))
     result = _Result()
-    ended = _Int64()
     outcome = library.greedy_portfolio(tasks, (_Settings * len(settings))(*settings), len(structures),
                                        alone_evaluations if partners else _ALL, max(1, turn_evaluations),
-                                       ctypes.byref(result), ctypes.byref(ended))
+                                       ctypes.byref(result))
     try:
         if outcome == OUT_OF_MEMORY:
             raise MemoryError(f"the greedy search ran out of memory after {result.expanded} expansions")
