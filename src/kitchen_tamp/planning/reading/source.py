@@ -7,19 +7,45 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from kitchen_tamp.planning.errors import PlanningInputError
+from kitchen_tamp.planning.reading.pddl_text import GRAMMAR_WORDS
+
+_KEYWORD_OR_COMMENT = re.compile(r";[^\n]*|:[\w-]*[A-Z][\w-]*|(?<=\()\s*[\w-]*[A-Z][\w-]*")
+"""A comment, or a ``:keyword`` or the word after an opening parenthesis with a capital letter in it."""
+_UPPER_CASE_AFTER_COLON_OR_PARENTHESIS = re.compile(r":[\w-]*[A-Z]|\(\s*[\w-]*[A-Z]")
+"""Where a keyword in upper case could be: most files have none, and are returned as they are."""
+
+
+def lowercase_keywords(text: str) -> str:
+    """``text`` with PDDL's keywords in lower case: ``(Define``, ``(:Init``, ``(AND`` as ``(define``, ...
+
+    PDDL is case-insensitive and IPC files are written in every case (logistics' ``(Define``), but the
+    ``pddl`` package's grammar knows its keywords in lower case only. Every ``:keyword`` and every
+    grammar word right after an opening parenthesis is lowered; names, variables and comments are
+    kept as written, and so is every position in the text (errors still point at the right column)."""
+    def lower(match: re.Match[str]) -> str:
+        token = match.group(0)
+        if token[0] == ":" or (token[0] != ";" and token.strip().lower() in GRAMMAR_WORDS):
+            return token.lower()
+        return token
+
+    if not _UPPER_CASE_AFTER_COLON_OR_PARENTHESIS.search(text):
+        return text
+    return _KEYWORD_OR_COMMENT.sub(lower, text)
 
 
 def read_pddl(path: str | Path, what: str) -> str:
-    """The text of a PDDL file; a missing or unreadable file is an input error naming ``what``."""
+    """The text of a PDDL file, keywords in lower case (``lowercase_keywords``); a missing or unreadable
+    file is an input error naming ``what``."""
     path = Path(path)
     if not path.exists():
         raise PlanningInputError(f"{what} file not found", path)
     if path.is_dir():
         raise PlanningInputError(f"{what} path is a directory, expected a PDDL file", path)
     try:
-        return path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as error:
         raise PlanningInputError(f"cannot read {what} file: {error}", path) from error
+    return lowercase_keywords(text)
 
 
 @dataclass(frozen=True, slots=True)
