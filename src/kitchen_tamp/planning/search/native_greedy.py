@@ -222,6 +222,10 @@ def _task_structure(evaluator: LandmarkEvaluator, arrays: _Arrays) -> _Task:
     return structure
 
 
+_ALL = 2**63 - 1
+"""Evaluations without end: the main search alone to its end."""
+
+
 def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
                        library: ctypes.CDLL, partners: Sequence[Partner] = (),
                        alone_evaluations: int = 0, turn_evaluations: int = 1) -> SearchResult:
@@ -269,6 +273,3 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
     finally:
         library.greedy_result_free(ctypes.byref(result))
 
-
-_ALL = 2**63 - 1
-"""Evaluations without end: the main search alone to its end."""
