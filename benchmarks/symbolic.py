@@ -55,7 +55,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from pddl_generators import blocks_world, gripper, ipc_problem, kitchen_problem, scaled_kitchen
-from symbolic_process import fast_downward_script, geometric_mean, process_table
+from symbolic_process import fast_downward_script, geometric_mean, process_table, run_whole
 
 from kitchen_tamp.planning import SEARCHES, SearchResult, Task, validate_plan
 from kitchen_tamp.planning.grounding import ground
@@ -314,10 +314,9 @@ def run_fast_downward(script: Path, domain: Path, problem: Path, search: str, wo
                       timeout: float) -> Run:
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     try:
-        completed = subprocess.run(
+        completed = run_whole(
             [sys.executable, str(script), "--plan-file", str(workdir / "fd.plan"), str(domain),
-             str(problem), "--search", PAIRINGS[search].fast_downward],
-            capture_output=True, text=True, cwd=workdir, timeout=timeout)
+             str(problem), "--search", PAIRINGS[search].fast_downward], timeout, cwd=workdir)
     except subprocess.TimeoutExpired:
         return Run(None, None, None, f"FD >{timeout:g} s")
     after = resource.getrusage(resource.RUSAGE_CHILDREN)

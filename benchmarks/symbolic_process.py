@@ -50,12 +50,14 @@ import os
 import re
 import resource
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 REPO = Path(__file__).resolve().parents[1]
 ENTRY_SCRIPT = REPO / "pddl" / "activity_planning.py"
@@ -155,6 +157,22 @@ def _children_cpu_seconds() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+def run_whole(command: list[str], timeout: float, **options: Any) -> subprocess.CompletedProcess[str]:
+    """``subprocess.run`` with its output captured as text, the command in a session of its own whose
+    every process is killed when the timeout expires or the benchmark is interrupted: Fast Downward's
+    driver runs its search as a child, which killing the driver alone leaves running (for hours, with
+    gigabytes of memory, on a problem it does not solve)."""
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          start_new_session=True, **options) as process:
+        try:
+            stdout, stderr = process.communicate(timeout=timeout)
+        except BaseException:  # the timeout, or Ctrl-C: nothing of the run outlives it
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
+            raise
+    return subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
+
+
 def _run_once(command: list[str], planner: str, workdir: Path,
               timeout: float) -> tuple[float | None, float | None, Outcome]:
     """Wall and CPU seconds of one run, and what it printed (seconds None without a plan)."""
@@ -163,8 +181,7 @@ def _run_once(command: list[str], planner: str, workdir: Path,
     cpu_start = _children_cpu_seconds()
     start = time.perf_counter()
     try:
-        completed = subprocess.run(command, capture_output=True, text=True, cwd=workdir, timeout=timeout,
-                                   env=_environment(workdir))
+        completed = run_whole(command, timeout, cwd=workdir, env=_environment(workdir))
     except subprocess.TimeoutExpired:
         return None, None, Outcome(None)
     seconds = time.perf_counter() - start

@@ -172,7 +172,7 @@ def test_a_root_is_dear_when_its_h_ff_evaluations_cost_more_than_handing_over(
     monkeypatch.setattr(alternating_greedy.time, "process_time", lambda: clock[0])
     monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.005)
     evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
-    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None), True)
+    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
     handover.root_evaluated(20.0, 0.0002)  # 4 ms of evaluations at the least
     assert not handover.due()
     handover.root_evaluated(30.0, 0.0002)  # 6 ms
@@ -185,7 +185,7 @@ def test_without_the_c_search_its_clock_leaves_the_search_in_python(monkeypatch:
     monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.005)
     monkeypatch.setattr(loading, "native_library", lambda: None)
     evaluator = LandmarkEvaluator(RelaxedExploration(_load("pegsol", "task13.pddl"), "hadd"))
-    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None), True)
+    handover = alternating_greedy._Handover(evaluator, True, 1000, SearchBudget(None, None))
     assert not handover.due()
     clock[0] += 0.006
     assert handover.due()  # the C search's turn

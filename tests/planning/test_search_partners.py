@@ -17,7 +17,7 @@ from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search import partners as partners_module
 from kitchen_tamp.planning.search.alternating_greedy import alternating_greedy_search
 from kitchen_tamp.planning.search.native_greedy import native_lazy_search
-from kitchen_tamp.planning.search.partners import PARTNERS, Partner
+from kitchen_tamp.planning.search.partners import PARTNERS, Partner, Turns
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult
 from kitchen_tamp.planning.task import Task
 from kitchen_tamp.planning.validation import validate_plan
@@ -70,7 +70,7 @@ def _portfolio(task: Task, library: object, partners: tuple[Partner, ...], alone
                expansions: int | None = None) -> SearchResult:
     evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"))
     return native_lazy_search(evaluator, True, 1000, SearchBudget(None, expansions), library,  # type: ignore[arg-type]
-                              partners, alone, turn)
+                              Turns(partners, alone, turn))
 
 
 @pytest.mark.parametrize(("domain", "problem", "alone", "turn"), [
@@ -119,16 +119,15 @@ def test_the_expansion_budget_is_shared_by_the_searches(library: object) -> None
 def test_a_gbfs_search_takes_its_partners_after_the_work_set(library: object,
                                                              monkeypatch: pytest.MonkeyPatch) -> None:
     """Through ``alternating_greedy_search``: the partners join once the main search has evaluated
-    ``PARTNERS_AFTER_WORK`` divided by the evaluator's work per evaluation, unless ``partners=False``."""
-    from kitchen_tamp.planning.search import alternating_greedy
-
+    ``PARTNERS_AFTER_WORK`` divided by the evaluator's work per evaluation."""
     task = _load("pegsol", "task23.pddl")
     alone_runs = [_python(task, monkeypatch), *(_python(task, monkeypatch, choices) for choices in PARTNERS)]
     monkeypatch.setattr(loading, "NATIVE_HANDOVER_AFTER_SECONDS", 0.0)  # to C at once
     work = LandmarkEvaluator(RelaxedExploration(task, "hadd")).work_per_evaluation
-    monkeypatch.setattr(alternating_greedy, "PARTNERS_AFTER_WORK", 300 * work)
+    monkeypatch.setattr(partners_module, "PARTNERS_AFTER_WORK", 300 * work)
     together = alternating_greedy_search(task, SearchBudget(None, None))
-    alone = alternating_greedy_search(task, SearchBudget(None, None), partners=False)
+    monkeypatch.setattr(partners_module, "PARTNERS_AFTER_WORK", 10**30)
+    alone = alternating_greedy_search(task, SearchBudget(None, None))
     assert alone.plan == alone_runs[0].plan and alone.evaluated == alone_runs[0].evaluated
     winner, evaluations = _turns([run.evaluated for run in alone_runs], 300,
                                  partners_module.PARTNER_TURN_EVALUATIONS)

@@ -42,7 +42,7 @@ from kitchen_tamp.planning.heuristics import INFINITY, RelaxedExploration
 from kitchen_tamp.planning.landmark_count import Evaluation, LandmarkEvaluator
 from kitchen_tamp.planning.search import greedy_kernel_loading as loading
 from kitchen_tamp.planning.search.breadth_first import dead_root_result, unsolvable_message
-from kitchen_tamp.planning.search.partners import PARTNER_TURN_EVALUATIONS, PARTNERS, PARTNERS_AFTER_WORK
+from kitchen_tamp.planning.search.partners import turns_after_work
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_to
 from kitchen_tamp.planning.task import State, Task
 
@@ -133,8 +133,7 @@ class _Progress:
 
 def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = True,
                               boost: int = DEFAULT_BOOST, novelty: bool = True,
-                              landmarks: bool = True, landmark_preferred: bool = True,
-                              partners: bool = True) -> SearchResult:
+                              landmarks: bool = True, landmark_preferred: bool = True) -> SearchResult:
     """GBFS with h_FF (and the landmark count), taking turns between all, preferred and novel states.
 
     ``landmarks=False`` drops the landmark count's queues (h_FF alone, as Fast
@@ -144,7 +143,7 @@ def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = 
     only, as today's lama-first does (its landmark heuristic has ``pref=false``),
     which expands several times more states on woodworking and depot here.
     A lazy search with the landmark count that goes on long in C is joined by
-    other searches taking turns (``partners``); ``partners=False`` keeps it alone.
+    other searches taking turns (``partners``).
     """
     evaluator = LandmarkEvaluator(RelaxedExploration(task, "hadd"), landmarks, landmark_preferred)
     root = evaluator.root()
@@ -154,7 +153,7 @@ def alternating_greedy_search(task: Task, budget: SearchBudget, *, lazy: bool = 
     novel.is_novel(task.initial_state)
     heuristics = 2 if evaluator.count else 1
     if lazy:
-        return _lazy(task, evaluator, novel, budget, AlternatingQueues(boost, heuristics), partners)
+        return _lazy(task, evaluator, novel, budget, AlternatingQueues(boost, heuristics))
     return _eager(task, evaluator, novel, budget, AlternatingQueues(boost, heuristics))
 
 
@@ -204,13 +203,13 @@ def _eager(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: Sea
 
 
 def _lazy(task: Task, evaluator: LandmarkEvaluator, novel: Novelty, budget: SearchBudget,
-          queues: AlternatingQueues[tuple[State | None, State]], partners: bool) -> SearchResult:
+          queues: AlternatingQueues[tuple[State | None, State]]) -> SearchResult:
     root = task.initial_state
     goal, goal_neg = task.goal, task.goal_neg
     successors, heuristics = task.successor_indices, queues.heuristics
     closed: dict[State, State | None] = {}  # each evaluated state's parent
     accepted: dict[State, int] = {}  # each expanded state's accepted landmarks
-    handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget, partners)
+    handover = _Handover(evaluator, novel.enabled, queues.boost_amount, budget)
     if (handed_over := handover.search()) is not None:
         return handed_over
     clock = time.process_time()
@@ -263,12 +262,10 @@ class _Handover:
     search in C is looked for (``native_greedy``: no numpy, no numba). Without it, the search goes over to
     numba's JIT kernel once the evaluator has switched to the JIT exploration (``COMPILED_AFTER_WORK``),
     which has imported numba already. In C, a search with the landmark count is joined by ``PARTNERS``
-    after ``PARTNERS_AFTER_WORK`` (``partners.py``) unless ``partners`` is False."""
+    after ``PARTNERS_AFTER_WORK`` (``partners.py``)."""
 
-    def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
-                 partners: bool) -> None:
+    def __init__(self, evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget) -> None:
         self.evaluator, self.novelty, self.boost, self.budget = evaluator, novelty, boost, budget
-        self.partners = partners
         self.due_at = time.process_time() + loading.NATIVE_HANDOVER_AFTER_SECONDS
         self.native_looked_for = False
 
@@ -292,11 +289,8 @@ class _Handover:
                 from kitchen_tamp.planning.search.native_greedy import native_lazy_search
 
                 evaluator = self.evaluator
-                if not self.partners or evaluator.count is None:
-                    return native_lazy_search(evaluator, self.novelty, self.boost, self.budget, library)
-                alone = -(-PARTNERS_AFTER_WORK // max(1, evaluator.work_per_evaluation))
-                return native_lazy_search(evaluator, self.novelty, self.boost, self.budget, library, PARTNERS,
-                                          alone, PARTNER_TURN_EVALUATIONS)
+                turns = None if evaluator.count is None else turns_after_work(evaluator.work_per_evaluation)
+                return native_lazy_search(evaluator, self.novelty, self.boost, self.budget, library, turns)
         if self.evaluator.compiled is None:
             return None
         from kitchen_tamp.planning.search.compiled_greedy import compiled_lazy_search  # numpy and numba

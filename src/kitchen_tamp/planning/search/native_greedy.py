@@ -20,7 +20,7 @@ from __future__ import annotations
 import ctypes
 import hashlib
 from array import array
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -28,7 +28,7 @@ from kitchen_tamp.planning.heuristics import BUCKET_LEVELS
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
 from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, UNSOLVABLE
-from kitchen_tamp.planning.search.partners import Partner
+from kitchen_tamp.planning.search.partners import Turns
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_from_rows
 from kitchen_tamp.planning.task import bits
 
@@ -227,14 +227,13 @@ _ALL = 2**63 - 1
 
 
 def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, budget: SearchBudget,
-                       library: ctypes.CDLL, partners: Sequence[Partner] = (),
-                       alone_evaluations: int = 0, turn_evaluations: int = 1) -> SearchResult:
+                       library: ctypes.CDLL, turns: Turns | None = None) -> SearchResult:
     """``alternating_greedy._lazy`` from the root, in the C library (``load_library``'s).
 
-    With ``partners``, the search goes alone for ``alone_evaluations`` evaluations; then it and the
-    partners (each from its own root, on the same task) take turns of ``turn_evaluations`` evaluations
-    until one ends: its plan, or its proof that there is none, is the answer, with the counts summed
-    over all of them. A partner with landmarks needs ``evaluator`` to have the landmark graph."""
+    With ``turns``, the search goes alone for ``turns.alone`` evaluations; then it and the partners
+    (each from its own root, on the same task) take turns of ``turns.turn`` evaluations until one
+    ends: its plan, or its proof that there is none, is the answer, with the counts summed over all
+    of them. A partner with landmarks needs ``evaluator`` to have the landmark graph."""
     task = evaluator.exploration.task
     arrays = _Arrays()
     structure = _task_structure(evaluator, arrays)
@@ -242,9 +241,10 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
     max_expansions = -1 if budget.max_expansions is None else budget.max_expansions
     structures = [structure]
     settings = [_Settings(2 if evaluator.count is not None else 1, boost, novelty, max_expansions, deadline)]
-    if len(partners) >= PORTFOLIO_MAX:
+    turns = turns or Turns((), _ALL, 1)
+    if len(turns.partners) >= PORTFOLIO_MAX:
         raise ValueError(f"at most {PORTFOLIO_MAX - 1} partners take turns with a search")
-    for partner in partners:
+    for partner in turns.partners:
         if partner.landmarks and evaluator.count is None:
             raise ValueError("a partner with the landmark count needs an evaluator with the landmark graph")
         copy = _Task.from_buffer_copy(structure)
@@ -256,7 +256,7 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
     tasks = (ctypes.POINTER(_Task) * len(structures))(*(ctypes.pointer(each) for each in structures))
     result = _Result()
     outcome = library.greedy_portfolio(tasks, (_Settings * len(settings))(*settings), len(structures),
-                                       alone_evaluations if partners else _ALL, max(1, turn_evaluations),
+                                       turns.alone, max(1, turns.turn),
                                        ctypes.byref(result))
     try:
         if outcome == OUT_OF_MEMORY:

@@ -51,3 +51,18 @@ of it). A count, not a clock, so that the same task always gets the same plan.""
 
 PARTNER_TURN_EVALUATIONS = 1000
 """Evaluations each search makes in its turn once the partners have joined."""
+
+
+class Turns(NamedTuple):
+    """Who takes turns with a search, and when: it goes alone for ``alone`` evaluations, then each
+    search in turn for ``turn`` evaluations."""
+
+    partners: tuple[Partner, ...]
+    alone: int
+    turn: int
+
+
+def turns_after_work(work_per_evaluation: int) -> Turns:
+    """``PARTNERS`` joining a search once its evaluations of ``work_per_evaluation`` each have made
+    ``PARTNERS_AFTER_WORK``."""
+    return Turns(PARTNERS, -(-PARTNERS_AFTER_WORK // max(1, work_per_evaluation)), PARTNER_TURN_EVALUATIONS)
