@@ -26,7 +26,7 @@ from tests.planning.test_compiled_greedy import NO_C_SEARCH
 
 IPC = REPO / "benchmarks" / "ipc"
 
-H_FF_WITH_NOVELTY, H_FF_ALONE, LANDMARKS_WITHOUT_NOVELTY = PARTNERS
+H_FF_ALONE, LANDMARKS_WITHOUT_NOVELTY = PARTNERS
 
 
 @pytest.fixture
@@ -138,4 +138,4 @@ def test_a_gbfs_search_takes_its_partners_after_the_work_set(library: object,
 def test_more_partners_than_the_c_search_holds_are_refused(library: object) -> None:
     task = _load("pegsol", "task13.pddl")
     with pytest.raises(ValueError, match="at most 7 partners"):
-        _portfolio(task, library, PARTNERS * 3, 10, 10)
+        _portfolio(task, library, (H_FF_ALONE,) * 8, 10, 10)
