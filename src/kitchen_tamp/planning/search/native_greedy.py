@@ -28,7 +28,7 @@ from kitchen_tamp.planning.heuristics import BUCKET_LEVELS
 from kitchen_tamp.planning.landmark_count import LandmarkEvaluator
 from kitchen_tamp.planning.search.breadth_first import unsolvable_message
 from kitchen_tamp.planning.search.greedy_kernel_loading import OUT_OF_BUDGET, SOLVED, UNSOLVABLE
-from kitchen_tamp.planning.search.partners import Turns
+from kitchen_tamp.planning.search.partners import Partner, Turns
 from kitchen_tamp.planning.search.result import SearchBudget, SearchResult, plan_from_rows
 from kitchen_tamp.planning.task import bits
 
@@ -239,20 +239,20 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
     structure = _task_structure(evaluator, arrays)
     deadline = -1.0 if budget.deadline is None else budget.deadline
     max_expansions = -1 if budget.max_expansions is None else budget.max_expansions
-    structures = [structure]
-    settings = [_Settings(2 if evaluator.count is not None else 1, boost, novelty, max_expansions, deadline)]
     turns = turns or Turns((), _ALL, 1)
     if len(turns.partners) >= PORTFOLIO_MAX:
         raise ValueError(f"at most {PORTFOLIO_MAX - 1} partners take turns with a search")
-    for partner in turns.partners:
-        if partner.landmarks and evaluator.count is None:
+    main = Partner(evaluator.count is not None, evaluator.landmark_preferred, novelty)
+    structures, settings = [], []
+    for choices in (main, *turns.partners):
+        if choices.landmarks and evaluator.count is None:
             raise ValueError("a partner with the landmark count needs an evaluator with the landmark graph")
         copy = _Task.from_buffer_copy(structure)
-        copy.landmarks_used = int(partner.landmarks)
-        copy.landmark_preferred = int(partner.landmarks and partner.landmark_preferred)
+        copy.landmarks_used = int(choices.landmarks)
+        copy.landmark_preferred = int(choices.landmarks and choices.landmark_preferred)
         structures.append(copy)
-        heuristics = 2 if partner.landmarks else 1
-        settings.append(_Settings(heuristics, boost, partner.novelty, max_expansions, deadline))
+        heuristics = 2 if choices.landmarks else 1
+        settings.append(_Settings(heuristics, boost, choices.novelty, max_expansions, deadline))
     tasks = (ctypes.POINTER(_Task) * len(structures))(*(ctypes.pointer(each) for each in structures))
     result = _Result()
     outcome = library.greedy_portfolio(tasks, (_Settings * len(settings))(*settings), len(structures),
@@ -272,4 +272,3 @@ def native_lazy_search(evaluator: LandmarkEvaluator, novelty: bool, boost: int, 
                             unsolvable_message(task, result.n_rows))
     finally:
         library.greedy_result_free(ctypes.byref(result))
-
