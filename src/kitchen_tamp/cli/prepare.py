@@ -71,9 +71,11 @@ def _compile_sphere_kernels_ahead_of_time(
         compile_ahead_of_time,
         valid_configurations_of_fields,
     )
+    from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid import distance_grid_cells
     from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import with_derived
 
-    valid_configurations_of_fields(with_derived(checker.kernel_arguments), home, checker.margin, False)
+    fields = with_derived(checker.kernel_arguments, distance_grid_cells)
+    valid_configurations_of_fields(fields, home, checker.margin, False)
     _ahead_of_time("the sphere model's kernels", compile_ahead_of_time)
 
 

@@ -1,10 +1,10 @@
 """Compile the validity and clearance kernels ahead of time (numba's ``pycc``), at install.
 
 `compile_ahead_of_time` takes the signatures numba's JIT gave
-`valid_configurations_of_fields` (below) and `clearance.clearance_penalties_of_arguments` for a
-real model's arrays (so both must have run once in this process, as ``kitchen_tamp.cli.prepare``
-makes them) and writes the extension module that ``loading.AHEAD_OF_TIME`` loads. Only
-``kitchen_tamp.cli.prepare`` calls this.
+`valid_configurations_of_fields` (below), `clearance.clearance_penalties_of_arguments` and
+`distance_grid.distance_grid_cells` for a real model's arrays (so each must have run once in this
+process, as ``kitchen_tamp.cli.prepare`` makes them) and writes the extension module that
+``loading.AHEAD_OF_TIME`` loads. Only ``kitchen_tamp.cli.prepare`` calls this.
 
 A run must get the JIT kernels' answers to the bit: the clearance's last bits move trajectory
 optimisation's iterates, so a run with the module would otherwise plan other paths than one
@@ -31,6 +31,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.kernels.clearance import clearance_penalties_of_arguments
+from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid import distance_grid_cells
 from kitchen_tamp.motion.geometry.spheres.kernels.loading import AHEAD_OF_TIME
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays, validity_scratch
@@ -54,6 +55,7 @@ def valid_configurations_of_fields(
 
 EXPORTED: dict[str, Any] = {
     "valid_configurations_of_fields": valid_configurations_of_fields,
+    "distance_grid_cells": distance_grid_cells,
     "clearance_penalties_of_arguments": clearance_penalties_of_arguments,
 }
 """The kernels the module exports, by the names `loading.sphere_kernels` reads."""

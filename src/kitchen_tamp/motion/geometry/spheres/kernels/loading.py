@@ -4,13 +4,14 @@ numba's JIT.
 Importing numba and readying its compiler cost a run about 0.7 s of one core before its first
 check (the import 0.3 s, numba's typing and target registries 0.35-0.4 s on the first call,
 reading the cached kernels the rest), more than a kitchen run's motion planning. So ``make
-install`` (``python -m kitchen_tamp.cli.prepare``) also compiles the two kernels a kitchen run
-calls, the validity of a batch (`ahead_of_time.valid_configurations_of_fields`) and the smooth
-clearance (`clearance.clearance_penalties_of_arguments`), ahead of time with numba's ``pycc``
-into an extension module in this package's ``__pycache__`` (`ahead_of_time`), named after a
-digest of the kernels' sources and of the processor it was compiled for, so that an edited kernel
-is never served by a stale module, nor a module run on another processor
-(``kitchen_tamp.ahead_of_time_modules``). Loading it needs numpy only
+install`` (``python -m kitchen_tamp.cli.prepare``) also compiles the kernels a kitchen run
+calls, the validity of a batch (`ahead_of_time.valid_configurations_of_fields`), the smooth
+clearance (`clearance.clearance_penalties_of_arguments`) and the filling of the obstacles'
+distance grid the validity kernel reads (`distance_grid.distance_grid_cells`), ahead of time
+with numba's ``pycc`` into an extension module in this package's ``__pycache__``
+(`ahead_of_time`), named after a digest of the kernels' sources and of the processor it was
+compiled for, so that an edited kernel is never served by a stale module, nor a module run on
+another processor (``kitchen_tamp.ahead_of_time_modules``). Loading it needs numpy only
 (under a millisecond). Without it (a read-only install, a kernel edited since the last ``make
 install``) numba's JIT kernels serve, the same code.
 
@@ -71,7 +72,10 @@ def ahead_of_time_kernels(module: ModuleType) -> SphereKernels:
         answer: npt.NDArray[np.bool_] = fields_kernel(packed, qs, margin, stop_at_invalid)
         return answer
 
-    return SphereKernels(with_derived, valid, module.clearance_penalties_of_arguments, True)
+    def pack(arguments: tuple[Any, ...]) -> PackedValidity:
+        return with_derived(arguments, module.distance_grid_cells)
+
+    return SphereKernels(pack, valid, module.clearance_penalties_of_arguments, True)
 
 
 def jit_kernels() -> SphereKernels:

@@ -23,9 +23,10 @@ spheres' centres (``fine_centers``) come as x, y and z rows, so a leaf's spheres
 tested in SIMD lanes; so are the coarse ones, transposed per call.
 
 Per configuration, in this order (each step cheap next to the ones it saves): joint limits; the
-pair tables' cells (fetched a configuration ahead); kinematics; each group's bound against every
-box's axis-aligned bounds (one branch-free pass per group), and the few boxes that come near at
-the coarse and fine levels; each self pair's bounds, then each group's coarse spheres near the
+pair tables' cells (fetched a configuration ahead); kinematics; each group's bound against the
+obstacles' distance grid (`distance_grid`: one read clears a group nothing comes near), then
+against every box's axis-aligned bounds (one branch-free pass per group), and the few boxes that
+come near at the coarse and fine levels; each self pair's bounds, then each group's coarse spheres near the
 other's bound (one pass each), then sphere against sphere, then the fine level.
 """
 
@@ -35,6 +36,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid import grid_clearance
 from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     box_gap_at,
     folded_link_poses,
@@ -182,6 +184,11 @@ def valid_rows(
     high_x, high_y, high_z = arrays.high_x, arrays.high_y, arrays.high_z
     unchecked = arrays.unchecked
     group_order = arrays.group_order
+    grid_shape, grid_cells = arrays.grid_shape, arrays.grid_cells
+    # The grid's frame as scalars, which the compiler keeps in registers (read from the array, the
+    # loop would read it and divide by the cell's edge for every group).
+    grid_x, grid_y, grid_z = arrays.grid_frame[0], arrays.grid_frame[1], arrays.grid_frame[2]
+    grid_scale, grid_outside = 1.0 / arrays.grid_frame[3], arrays.grid_frame[4]
     count = qs.shape[0]
     groups, boxes = group_radii.shape[0], box_halves.shape[0]
     clear_usable, colliding_usable = margin <= table_margin, margin >= table_margin
@@ -250,6 +257,11 @@ def valid_rows(
             if reach <= 0.0:
                 continue
             x, y, z = group_world[g, 0], group_world[g, 1], group_world[g, 2]
+            clearance = grid_clearance(
+                x - grid_x, y - grid_y, z - grid_z, grid_scale, grid_outside, grid_shape, grid_cells
+            )
+            if clearance >= reach:
+                continue  # no obstacle within the bound's reach (`distance_grid`)
             if _boxes_near(x, y, z, reach * reach, low_x, low_y, low_z, high_x, high_y, high_z) == 0:
                 continue
             for b in range(boxes):

@@ -23,6 +23,7 @@ import numpy.typing as npt
 from numba.core import types
 from numba.experimental import structref
 
+from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid import distance_grid_cells
 from kitchen_tamp.motion.geometry.spheres.kernels.tree_walks import STACK_DEPTH
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import ALL_FIELDS, with_derived
 
@@ -93,6 +94,9 @@ class ValidityArrays(structref.StructRefProxy):
     high_z: FloatArray
     unchecked: FloatArray
     group_order: IntArray
+    grid_frame: FloatArray
+    grid_shape: IntArray
+    grid_cells: npt.NDArray[np.uint8]
 
 
 if tuple(ValidityArrays.__annotations__) != ALL_FIELDS:
@@ -112,7 +116,7 @@ def _pack(fields: tuple[Any, ...]) -> ValidityArrays:
 def validity_arrays(arguments: tuple[Any, ...]) -> ValidityArrays:
     """``arguments`` (in ``VALIDITY_FIELDS`` order) as one `ValidityArrays`, with the tables the
     kernel derives from them."""
-    packed: ValidityArrays = _pack(with_derived(arguments))
+    packed: ValidityArrays = _pack(with_derived(arguments, distance_grid_cells))
     return packed
 
 

@@ -8,9 +8,13 @@ into numba's structref for the JIT kernels.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid_frame import grid_frame
 
 VALIDITY_FIELDS = (
     "lower", "upper", "root", "parents", "origins", "kinds", "axes", "variables",
@@ -25,6 +29,7 @@ VALIDITY_FIELDS = (
 """The kernel's arrays by name, in the order `kernel_arguments` lays them out."""
 DERIVED_FIELDS = (
     "coarse_local", "low_x", "low_y", "low_z", "high_x", "high_y", "high_z", "unchecked", "group_order",
+    "grid_frame", "grid_shape", "grid_cells",
 )  # fmt: skip
 """What `with_derived` adds, so that a call need not derive it."""
 ALL_FIELDS = VALIDITY_FIELDS + DERIVED_FIELDS
@@ -33,28 +38,40 @@ UNCHECKED = 1e300
 """Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
 
 
-def _derived(laid_out: dict[str, Any]) -> tuple[Any, ...]:
+_OBSTACLE_FIELDS = ("box_rotations", "box_centers", "box_halves", "box_kinds")
+"""The obstacles' fields the distance grid is filled from."""
+GridCells = Callable[..., npt.NDArray[np.uint8]]
+"""`distance_grid.distance_grid_cells` as the serving kernels have it: (frame, shape, box_rotations,
+box_centers, box_halves, box_kinds) -> the cells."""
+
+
+def _derived(laid_out: dict[str, Any], grid_cells: GridCells) -> tuple[Any, ...]:
     """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
     pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
-    the groups with a checked box, in the order of their first pair."""
+    the groups with a checked box, in the order of their first pair; the obstacles' distance grid
+    (`distance_grid`): its frame, cells per axis and cells."""
     lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
     groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
     unchecked = np.full(groups * boxes, UNCHECKED)
     pairs = np.asarray(laid_out["group_box_pairs"]).reshape(-1, 2)
     unchecked[pairs[:, 0] * boxes + pairs[:, 1]] = 0.0
     order = list(dict.fromkeys(int(g) for g in pairs[:, 0]))
+    frame, shape = grid_frame(lows.reshape(-1, 3), highs.reshape(-1, 3))
     return (
         np.ascontiguousarray(np.asarray(laid_out["sphere_centers"]).T),
         *(np.ascontiguousarray(lows[:, axis]) for axis in range(3)),
         *(np.ascontiguousarray(highs[:, axis]) for axis in range(3)),
         unchecked,
         np.array(order, dtype=np.int64),
+        frame,
+        shape,
+        grid_cells(frame, shape, *(laid_out[name] for name in _OBSTACLE_FIELDS)),
     )
 
 
-def with_derived(arguments: tuple[Any, ...]) -> tuple[Any, ...]:
-    """``arguments`` (in ``VALIDITY_FIELDS`` order) followed by the tables derived from them: every
-    field in ``ALL_FIELDS`` order."""
+def with_derived(arguments: tuple[Any, ...], grid_cells: GridCells) -> tuple[Any, ...]:
+    """``arguments`` (in ``VALIDITY_FIELDS`` order) followed by the tables derived from them (the
+    distance grid's cells filled by ``grid_cells``): every field in ``ALL_FIELDS`` order."""
     if len(arguments) != len(VALIDITY_FIELDS):
         raise ValueError(f"expected {len(VALIDITY_FIELDS)} kernel arrays, got {len(arguments)}")
-    return (*arguments, *_derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True))))
+    return (*arguments, *_derived(dict(zip(VALIDITY_FIELDS, arguments, strict=True)), grid_cells))
