@@ -62,7 +62,7 @@ def test_no_point_is_read_farther_from_the_obstacles_than_it_is(spheres: SphereC
     boxes = _boxes(spheres)
     frame, shape = grid_frame(boxes["box_lows"], boxes["box_highs"])
     shapes = (boxes["box_rotations"], boxes["box_centers"], boxes["box_halves"], boxes["box_kinds"])
-    cells = CELLS(frame, shape, *shapes)
+    cells = CELLS(frame, shape, *shapes, boxes["box_lows"], boxes["box_highs"])
     low, high = frame[:3], frame[:3] + frame[3] * shape
     rng = np.random.default_rng(4)
     points = rng.uniform(low - 0.4, high + 0.4, size=(20_000, 3))
@@ -84,6 +84,7 @@ def test_a_scene_without_obstacles_has_a_grid_that_clears_nothing() -> None:
     frame, shape = grid_frame(np.zeros((0, 3)), np.zeros((0, 3)))
     assert shape.tolist() == [0, 0, 0]
     no_boxes = (np.zeros((0, 3, 3)), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, np.int64))
+    no_boxes += (np.zeros((0, 3)), np.zeros((0, 3)))
     cells = CELLS(frame, shape, *no_boxes)
     assert cells.size == 0
     assert CLEARANCE(0.1, 0.2, 0.3, 1.0 / frame[3], frame[4], shape, cells) == 0.0

@@ -37,26 +37,40 @@ def distance_grid_cells(
     centers: FloatArray,
     halves: FloatArray,
     kinds: npt.NDArray[np.int64],
+    lows: FloatArray,
+    highs: FloatArray,
 ) -> npt.NDArray[np.uint8]:
     """The cells (x-major, then y, then z) of the grid whose ``frame`` is (lowest corner x, y, z,
     cell edge, ...) and ``shape`` its cells per axis (`distance_grid_frame.grid_frame`): per cell,
     the distance from any point of it to the nearest obstacle (`primitives.box_gap_at` at its
-    centre less the half-diagonal), in units of ``GRID_UNIT`` rounded down, between 0 and 255."""
+    centre less the half-diagonal), in units of ``GRID_UNIT`` rounded down, between 0 and 255.
+    Each obstacle is measured only from the cells within ``GRID_REACH`` of its axis-aligned
+    bounds (``lows``, ``highs``): the others hold ``GRID_REACH`` for it."""
     step = frame[3]
     half_diagonal = step * np.sqrt(3.0) / 2.0
-    cells = np.empty(shape[0] * shape[1] * shape[2], dtype=np.uint8)
-    for i in range(shape[0]):
-        x = frame[0] + (i + 0.5) * step
-        for j in range(shape[1]):
-            y = frame[1] + (j + 0.5) * step
-            for k in range(shape[2]):
-                z = frame[2] + (k + 0.5) * step
-                nearest = GRID_REACH + half_diagonal  # a cell nothing comes near holds GRID_REACH
-                for b in range(kinds.shape[0]):
-                    nearest = min(nearest, box_gap_at(x, y, z, rotations, centers, halves, kinds, b))
-                # Rounded down, and a hair more, so that reading a byte back never overstates it.
-                units = np.floor((nearest - half_diagonal) / GRID_UNIT - 1e-6)
-                cells[(i * shape[1] + j) * shape[2] + k] = np.uint8(min(max(units, 0.0), 255.0))
+    # A cell nothing comes near holds GRID_REACH.
+    nearest = np.full(shape[0] * shape[1] * shape[2], GRID_REACH + half_diagonal)
+    spans = np.empty((3, 2), dtype=np.int64)
+    for b in range(kinds.shape[0]):
+        for axis in range(3):
+            grown = GRID_REACH + half_diagonal
+            first = int(np.floor((lows[b, axis] - grown - frame[axis]) / step))
+            last = int(np.ceil((highs[b, axis] + grown - frame[axis]) / step))
+            spans[axis, 0], spans[axis, 1] = max(first, 0), min(last, shape[axis])
+        for i in range(spans[0, 0], spans[0, 1]):
+            x = frame[0] + (i + 0.5) * step
+            for j in range(spans[1, 0], spans[1, 1]):
+                y = frame[1] + (j + 0.5) * step
+                for k in range(spans[2, 0], spans[2, 1]):
+                    z = frame[2] + (k + 0.5) * step
+                    cell = (i * shape[1] + j) * shape[2] + k
+                    gap = box_gap_at(x, y, z, rotations, centers, halves, kinds, b)
+                    nearest[cell] = min(nearest[cell], gap)
+    cells = np.empty(nearest.shape[0], dtype=np.uint8)
+    for cell in range(nearest.shape[0]):
+        # Rounded down, and a hair more, so that reading a byte back never overstates it.
+        units = np.floor((nearest[cell] - half_diagonal) / GRID_UNIT - 1e-6)
+        cells[cell] = np.uint8(min(max(units, 0.0), 255.0))
     return cells
 
 

@@ -38,11 +38,11 @@ UNCHECKED = 1e300
 """Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
 
 
-_OBSTACLE_FIELDS = ("box_rotations", "box_centers", "box_halves", "box_kinds")
+_OBSTACLE_FIELDS = ("box_rotations", "box_centers", "box_halves", "box_kinds", "box_lows", "box_highs")
 """The obstacles' fields the distance grid is filled from."""
 GridCells = Callable[..., npt.NDArray[np.uint8]]
 """`distance_grid.distance_grid_cells` as the serving kernels have it: (frame, shape, box_rotations,
-box_centers, box_halves, box_kinds) -> the cells."""
+box_centers, box_halves, box_kinds, box_lows, box_highs) -> the cells."""
 
 
 def _derived(laid_out: dict[str, Any], grid_cells: GridCells) -> tuple[Any, ...]:
