@@ -4,6 +4,7 @@ are the numpy reference's on configurations within a hair of the spheres' own co
 
 from __future__ import annotations
 
+import itertools
 from typing import Any
 
 import numpy as np
@@ -17,6 +18,7 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     joint_sines_cosines,
     place_point,
 )
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import origin_axes
 from tests.motion import test_sphere_pair_tables
 
 SINES_COSINES: Any = joint_sines_cosines
@@ -62,8 +64,11 @@ def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> No
     qs = rng.uniform(-3.0, 3.0, size=(20, 3))
     poses, frame = np.full((5, 3, 4), np.nan), np.empty((3, 4))
     sines, cosines = np.empty(3), np.empty(3)
+    no_quarter_turns = origin_axes(origins, kinds)
+    assert not no_quarter_turns.any()  # these origins turn by arbitrary angles
     for m in range(len(qs)):
-        FOLDED_POSES(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+        chain = (root, parents, origins, kinds, axes, variables, no_quarter_turns)
+        FOLDED_POSES(qs, m, *chain, poses, frame, sines, cosines)
         expected = [root]
         expected.append(expected[0] @ origins[1] @ _rotation(axes[1], qs[m, 0]))
         expected.append(expected[1] @ origins[2] @ _rotation(axes[2], qs[m, 1]))
@@ -75,6 +80,31 @@ def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> No
         assert np.all(np.isnan(poses[3]))
 
 
+def test_a_joint_about_z_behind_quarter_turns_is_the_matrix_product() -> None:
+    """Every signed permutation of the axes as the origin of a joint about z (with URDF's rounding
+    of a half pi in its zeros): the quarter-turn path gives the matrix product's pose."""
+    rng = np.random.default_rng(34)
+    kinds = np.array([FIXED, REVOLUTE_Z], dtype=np.int64)
+    parents, variables = np.array([-1, 0], dtype=np.int64), np.array([-1, 0], dtype=np.int64)
+    axes = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    root = _rotation(np.array([0.0, 0.6, 0.8]), 0.7)
+    root[:3, 3] = [0.1, -0.2, 0.3]
+    poses, frame, sines, cosines = np.empty((2, 3, 4)), np.empty((3, 4)), np.empty(1), np.empty(1)
+    for permutation in itertools.permutations(range(3)):
+        for signs in itertools.product((-1.0, 1.0), repeat=3):
+            origins = np.stack([np.eye(4), np.eye(4)])
+            origins[1, :3, :3] = 6e-17  # what rpy of a half pi leaves in the zeros
+            origins[1, list(permutation), [0, 1, 2]] = signs
+            origins[1, :3, 3] = rng.normal(size=3)
+            quarter_turns = origin_axes(origins, kinds)
+            assert quarter_turns[1, 0] != 0
+            for q in rng.uniform(-3.0, 3.0, size=(5, 1)):
+                FOLDED_POSES(q[None], 0, root, parents, origins, kinds, axes, variables, quarter_turns,
+                             poses, frame, sines, cosines)
+                expected = root @ origins[1] @ _rotation(axes[1], q[0])
+                assert np.allclose(poses[1], expected[:3], atol=1e-12)
+
+
 def test_folded_tree_places_every_sphere_where_the_full_tree_does(
     checkers: list[SphereCollisionChecker],
 ) -> None:
@@ -84,16 +114,20 @@ def test_folded_tree_places_every_sphere_where_the_full_tree_does(
         arguments = kernel_arguments(model, checker.lower, checker.upper)
         root, parents, origins, kinds, axes, variables = arguments[2:8]
         sphere_links, sphere_centers = arguments[13], arguments[14]
+        quarter_turns = origin_axes(origins, kinds)
+        assert np.count_nonzero(quarter_turns[:, 0]) == 7  # every joint of the Panda
         qs = rng.uniform(checker.lower, checker.upper, size=(50, 7))
         expected = model.sphere_positions(model.tree.link_poses(qs))
         poses, frame = np.empty((len(parents), 3, 4)), np.empty((3, 4))
         sines, cosines = np.empty(7), np.empty(7)
         world = np.empty_like(sphere_centers)
         for m in range(len(qs)):
-            FOLDED_POSES(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+            chain = (root, parents, origins, kinds, axes, variables, quarter_turns)
+            FOLDED_POSES(qs, m, *chain, poses, frame, sines, cosines)
             for s in range(len(sphere_links)):
                 PLACE(poses, sphere_links[s], sphere_centers, s, world)
-            assert np.max(np.abs(world - expected[m])) < 1e-12
+            # Within 1e-10 m: the quarter turns read pybullet's 4.9e-12 (rpy 1.57079632679) as 0.
+            assert np.max(np.abs(world - expected[m])) < 1e-10
 
 
 @pytest.mark.slow

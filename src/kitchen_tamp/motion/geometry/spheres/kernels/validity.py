@@ -61,7 +61,6 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
 FloatArray = npt.NDArray[np.float64]
 
 
-
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _boxes_near(
     x: float,
@@ -184,9 +183,8 @@ def valid_rows(
     high_x, high_y, high_z = arrays.high_x, arrays.high_y, arrays.high_z
     unchecked = arrays.unchecked
     group_order = arrays.group_order
+    origin_axes = arrays.origin_axes
     grid_shape, grid_cells = arrays.grid_shape, arrays.grid_cells
-    # The grid's frame as scalars, which the compiler keeps in registers (read from the array, the
-    # loop would read it and divide by the cell's edge for every group).
     grid_x, grid_y, grid_z = arrays.grid_frame[0], arrays.grid_frame[1], arrays.grid_frame[2]
     grid_scale, grid_outside = 1.0 / arrays.grid_frame[3], arrays.grid_frame[4]
     count = qs.shape[0]
@@ -248,7 +246,9 @@ def valid_rows(
                     break
         if not valid[m]:
             continue
-        folded_link_poses(qs, m, root, parents, origins, kinds, axes, variables, poses, frame, sines, cosines)
+        folded_link_poses(
+            qs, m, root, parents, origins, kinds, axes, variables, origin_axes, poses, frame, sines, cosines
+        )
         for g in range(groups):
             place_point(poses, group_links[g], group_centers, g, group_world)
         for o in range(ordered):

@@ -97,6 +97,7 @@ class ValidityArrays(structref.StructRefProxy):
     grid_frame: FloatArray
     grid_shape: IntArray
     grid_cells: npt.NDArray[np.uint8]
+    origin_axes: IntArray
 
 
 if tuple(ValidityArrays.__annotations__) != ALL_FIELDS:

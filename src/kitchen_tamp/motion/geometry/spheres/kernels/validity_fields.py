@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import REVOLUTE_Z
 from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid_frame import grid_frame
 
 VALIDITY_FIELDS = (
@@ -29,13 +30,36 @@ VALIDITY_FIELDS = (
 """The kernel's arrays by name, in the order `kernel_arguments` lays them out."""
 DERIVED_FIELDS = (
     "coarse_local", "low_x", "low_y", "low_z", "high_x", "high_y", "high_z", "unchecked", "group_order",
-    "grid_frame", "grid_shape", "grid_cells",
+    "grid_frame", "grid_shape", "grid_cells", "origin_axes",
 )  # fmt: skip
 """What `with_derived` adds, so that a call need not derive it."""
 ALL_FIELDS = VALIDITY_FIELDS + DERIVED_FIELDS
 """Every field the kernel reads, in the order a packed tuple holds them."""
 UNCHECKED = 1e300
 """Larger than any squared gap in metres: what ``unchecked`` adds for a (group, box) pair not checked."""
+AXIS_TOLERANCE = 1e-10
+"""How near 0 or 1 an origin's rotation entries must be for `origin_axes` to read it as quarter turns:
+URDF's ``rpy`` of a half pi leaves 6e-17 in the zeros, and of pybullet's Panda's 1.57079632679 4.9e-12.
+Read as 0, they move a sphere by about 1e-11 m."""
+
+
+def origin_axes(origins: npt.NDArray[np.float64], kinds: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
+    """Per link (L, 3): for a joint about z (REVOLUTE_Z) whose origin's rotation only permutes and
+    flips the axes (quarter turns, as every joint of the Panda), per column of that rotation, its
+    one nonzero row plus one, signed as the entry; zeros for any other link. The kinematics then
+    take the parent's columns instead of multiplying by the rotation
+    (`primitives.folded_link_poses`)."""
+    codes = np.zeros((len(kinds), 3), dtype=np.int64)
+    for link in np.flatnonzero(np.asarray(kinds) == REVOLUTE_Z):
+        rotation = np.asarray(origins[link])[:3, :3]
+        rounded = np.round(rotation)
+        if np.max(np.abs(rotation - rounded)) > AXIS_TOLERANCE or not np.array_equal(
+            np.abs(rounded).sum(axis=0), [1.0, 1.0, 1.0]
+        ):
+            continue
+        rows = np.argmax(np.abs(rounded), axis=0)
+        codes[link] = (rows + 1) * rounded[rows, [0, 1, 2]].astype(np.int64)
+    return codes
 
 
 _OBSTACLE_FIELDS = ("box_rotations", "box_centers", "box_halves", "box_kinds", "box_lows", "box_highs")
@@ -49,7 +73,8 @@ def _derived(laid_out: dict[str, Any], grid_cells: GridCells) -> tuple[Any, ...]
     """The coarse centres as x, y and z rows; the boxes' axis-aligned bounds axis by axis; the box
     pairs as a dense (group, box) table, row-major, 0 where checked and ``UNCHECKED`` where not;
     the groups with a checked box, in the order of their first pair; the obstacles' distance grid
-    (`distance_grid`): its frame, cells per axis and cells."""
+    (`distance_grid`): its frame, cells per axis and cells; the quarter-turn origins
+    (`origin_axes`)."""
     lows, highs = np.asarray(laid_out["box_lows"]), np.asarray(laid_out["box_highs"])
     groups, boxes = len(laid_out["group_radii"]), len(laid_out["box_halves"])
     unchecked = np.full(groups * boxes, UNCHECKED)
@@ -66,6 +91,7 @@ def _derived(laid_out: dict[str, Any], grid_cells: GridCells) -> tuple[Any, ...]
         frame,
         shape,
         grid_cells(frame, shape, *(laid_out[name] for name in _OBSTACLE_FIELDS)),
+        origin_axes(laid_out["origins"], laid_out["kinds"]),
     )
 
 
