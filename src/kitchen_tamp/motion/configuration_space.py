@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,6 +39,11 @@ class ConfigurationSpace:
         upper.flags.writeable = False
         object.__setattr__(self, "lower", lower)
         object.__setattr__(self, "upper", upper)
+
+    @functools.cached_property
+    def diagonal(self) -> float:
+        """The length of the box's diagonal: no two configurations are farther apart."""
+        return float(np.linalg.norm(self.upper - self.lower))
 
     @property
     def dimension(self) -> int:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -30,12 +30,14 @@ from kitchen_tamp.motion.sampling.rrt_connect_kernel import (
     GOAL_COLLIDES,
     START_COLLIDES,
     ends_and_line_checked,
+    joined_path,
     rrt_connect_iterations,
 )
 
 _ITERATIONS: Any = rrt_connect_iterations
 """The compiled kernel, untyped for mypy (numba's dispatcher stubs take no argument list)."""
 _ENDS_AND_LINE: Any = ends_and_line_checked
+_JOINED_PATH: Any = joined_path
 
 INITIAL_CAPACITY = 1024
 """Rows of each tree's arrays at first; they double when a block of iterations might not fit."""
@@ -103,18 +105,10 @@ class _Trees:
         squared_norms[:, :capacity] = self.squared_norms
         self.nodes, self.parents, self.squared_norms = nodes, parents, squared_norms
 
-    def branch(self, tree: int, index: int) -> JointPath:
-        """The configurations from tree ``tree``'s root to its node ``index``."""
-        chain: list[int] = []
-        while index != NO_PARENT:
-            chain.append(index)
-            index = int(self.parents[tree, index])
-        return np.array(self.nodes[tree, chain[::-1]])
-
     def joined_path(self) -> JointPath:
         """Start-tree branch to its end node, then the goal-tree branch backwards (shared node once)."""
-        start_end, goal_end = (int(self.counters[COUNTER_JOINED + 1 + tree]) for tree in (0, 1))
-        return np.concatenate([self.branch(0, start_end), self.branch(1, goal_end)[-2::-1]])
+        path: JointPath = _JOINED_PATH(self.nodes, self.parents, self.counters)
+        return path
 
 
 def run_compiled_loop(
@@ -123,14 +117,16 @@ def run_compiled_loop(
     samples: UniformSamples,
     compiled: tuple[Any, float],
     settings: LoopSettings,
+    checked_before: int = 0,
 ) -> LoopOutcome:
     """RRT-Connect's iterations from the two roots until the trees join or a limit is hit;
-    ``compiled`` is the sphere model's (`ValidityArrays`, margin)."""
+    ``compiled`` is the sphere model's (`ValidityArrays`, margin); the outcome's checks count
+    ``checked_before`` too."""
     arrays, margin = compiled
     trees = _Trees(start, goal)
     counters = trees.counters
     resolutions_per_step = max(1, round(settings.step_size / settings.resolution))
-    reach = float(np.linalg.norm(samples.space.upper - samples.space.lower))
+    reach = samples.space.diagonal
     room = 2 + math.ceil(reach / (resolutions_per_step * settings.resolution))
     status = PlanStatus.ITERATION_LIMIT
     while counters[COUNTER_ITERATIONS] < settings.max_iterations:
@@ -159,7 +155,7 @@ def run_compiled_loop(
             status = PlanStatus.SOLVED
             break
     path = trees.joined_path() if status is PlanStatus.SOLVED else None
-    iterations, checks = int(counters[COUNTER_ITERATIONS]), int(counters[COUNTER_CHECKS])
+    iterations, checks = int(counters[COUNTER_ITERATIONS]), checked_before + int(counters[COUNTER_CHECKS])
     return LoopOutcome(status, path, iterations, trees.node_count, checks)
 
 
@@ -181,5 +177,4 @@ def plan_compiled(
         return LoopOutcome(status, None, 0, 2, int(checked))
     if found == ENDS_JOINED:
         return LoopOutcome(PlanStatus.SOLVED, np.stack([start, goal]), 0, 2, int(checked))
-    outcome = run_compiled_loop(start, goal, samples, compiled, settings)
-    return replace(outcome, collision_checks=int(checked) + outcome.collision_checks)
+    return run_compiled_loop(start, goal, samples, compiled, settings, int(checked))

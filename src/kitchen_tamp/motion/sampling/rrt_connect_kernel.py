@@ -250,6 +250,29 @@ def rrt_connect_iterations(
 
 
 @numba.njit(cache=True)
+def joined_path(nodes: FloatArray, parents: IntArray, counters: IntArray) -> FloatArray:
+    """The configurations from the start tree's root to its joined node, then the goal tree's from
+    the node before its joined one (the same configuration) back to its root."""
+    ends = (counters[COUNTER_JOINED + 1], counters[COUNTER_JOINED + 2])
+    lengths = np.zeros(2, dtype=np.int64)
+    for tree in range(2):
+        index = ends[tree]
+        while index >= 0:  # NO_PARENT (-1) above the root
+            lengths[tree] += 1
+            index = parents[tree, index]
+    path = np.empty((lengths[0] + lengths[1] - 1, nodes.shape[2]))
+    index = ends[0]
+    for row in range(lengths[0] - 1, -1, -1):
+        path[row] = nodes[0, index]
+        index = parents[0, index]
+    index = parents[1, ends[1]]
+    for row in range(lengths[0], path.shape[0]):
+        path[row] = nodes[1, index]
+        index = parents[1, index]
+    return path
+
+
+@numba.njit(cache=True)
 def ends_and_line_checked(
     start: FloatArray, goal: FloatArray, resolution: float, arrays: ValidityArrays, margin: float
 ) -> tuple[int, int]:
