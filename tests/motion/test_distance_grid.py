@@ -108,3 +108,20 @@ def test_the_kernel_gives_the_verdicts_it_gives_without_the_grid(spheres: Sphere
     assert np.array_equal(with_grid, VALID(tuple(without), qs, spheres.margin, False))
     assert 0.2 < with_grid.mean() < 0.95  # the obstacles are in the arm's way
     assert np.array_equal(with_grid, spheres.is_valid(qs))
+
+
+def test_models_of_the_same_obstacles_share_one_grid_and_others_get_their_own(
+    spheres: SphereCollisionChecker,
+) -> None:
+    arguments = spheres.kernel_arguments
+    grid = slice(ALL_FIELDS.index("grid_frame"), ALL_FIELDS.index("grid_cells") + 1)
+    first, again = with_derived(arguments, distance_grid_cells), with_derived(arguments, distance_grid_cells)
+    assert all(a is b for a, b in zip(first[grid], again[grid], strict=True))
+    moved = list(arguments)
+    centers = VALIDITY_FIELDS.index("box_centers")
+    moved[centers] = moved[centers] + np.array([0.0, 0.0, 0.05])  # every obstacle 5 cm up
+    for name in ("box_lows", "box_highs"):
+        moved[VALIDITY_FIELDS.index(name)] = moved[VALIDITY_FIELDS.index(name)] + np.array([0.0, 0.0, 0.05])
+    other = with_derived(tuple(moved), distance_grid_cells)
+    assert other[grid][2] is not first[grid][2]
+    assert other[grid][0][2] == pytest.approx(first[grid][0][2] + 0.05)  # the grid moved with them
