@@ -76,13 +76,13 @@ _grids: dict[tuple[bytes, GridCells], tuple[Any, ...]] = {}
 
 def _distance_grid(laid_out: dict[str, Any], grid_cells: GridCells) -> tuple[Any, ...]:
     """The distance grid of the obstacles of ``laid_out``: (frame, cells per axis, cells)."""
-    obstacles = [np.ascontiguousarray(laid_out[name]) for name in _OBSTACLE_FIELDS]
-    key = (b"".join(array.tobytes() + repr(array.shape).encode() for array in obstacles), grid_cells)
+    obstacles = {name: np.ascontiguousarray(laid_out[name]) for name in _OBSTACLE_FIELDS}
+    key = (b"".join(array.tobytes() + repr(array.shape).encode() for array in obstacles.values()), grid_cells)
     if key not in _grids:
-        frame, shape = grid_frame(obstacles[4].reshape(-1, 3), obstacles[5].reshape(-1, 3))
+        frame, shape = grid_frame(obstacles["box_lows"].reshape(-1, 3), obstacles["box_highs"].reshape(-1, 3))
         if len(_grids) >= GRIDS_KEPT:
             del _grids[next(iter(_grids))]  # the oldest
-        _grids[key] = (frame, shape, grid_cells(frame, shape, *(laid_out[name] for name in _OBSTACLE_FIELDS)))
+        _grids[key] = (frame, shape, grid_cells(frame, shape, *obstacles.values()))
     return _grids[key]
 
 
