@@ -30,6 +30,7 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     ValidityScratch,
     validity_scratch,
 )
+from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -257,7 +258,7 @@ def joined_path(nodes: FloatArray, parents: IntArray, counters: IntArray) -> Flo
     lengths = np.zeros(2, dtype=np.int64)
     for tree in range(2):
         index = ends[tree]
-        while index >= 0:  # NO_PARENT (-1) above the root
+        while index != NO_PARENT:
             lengths[tree] += 1
             index = parents[tree, index]
     path = np.empty((lengths[0] + lengths[1] - 1, nodes.shape[2]))
