@@ -30,6 +30,7 @@ from kitchen_tamp.motion.motion_bench_maker import (
     mbm_scene,
     read_mbm_problem,
 )
+from kitchen_tamp.motion.sampling import compiled_rrt_connect
 from kitchen_tamp.motion.segment_checking import CompiledValidity
 from kitchen_tamp.world import panda_urdf_path
 from tests.motion.test_motion_bench_maker import TABLE_REQUEST, TABLE_SCENE
@@ -88,6 +89,27 @@ def test_the_compiled_loop_searches_as_the_python_loop_does(
     np.testing.assert_allclose(compiled.require_path(), python.require_path(), rtol=0.0, atol=1e-12)
 
 
+def test_the_compiled_loop_searches_alike_across_blocks_and_grown_trees(
+    table: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Blocks of two iterations and trees of 16 rows at first: the search runs over several calls,
+    growing the trees between them, and is still the Python loop's."""
+    monkeypatch.setattr(compiled_rrt_connect, "BLOCK", 2)
+    monkeypatch.setattr(compiled_rrt_connect, "INITIAL_CAPACITY", 16)
+    problem, spheres, _ = table
+    start, goal = problem.start, problem.goals[0]
+    search = RrtConnectHyperparameters(step_size=0.1)
+    compiled = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=5, time_budget_s=math.inf)
+    python = plan_rrt_connect(
+        start, goal, SPACE, PythonLoopSpheres(spheres), search, seed=5, time_budget_s=math.inf
+    )
+    assert compiled.status is PlanStatus.SOLVED
+    assert compiled.iterations > 2 * 2 and compiled.nodes > 2 * 16  # several calls, grown trees
+    assert (compiled.iterations, compiled.nodes) == (python.iterations, python.nodes)
+    assert compiled.collision_checks == python.collision_checks
+    np.testing.assert_allclose(compiled.require_path(), python.require_path(), rtol=0.0, atol=1e-12)
+
+
 @pytest.mark.parametrize("seed", [3, 4])
 def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(table: Any, seed: int) -> None:
     problem, spheres, exact = table
@@ -105,10 +127,14 @@ def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(table:
 def test_the_compiled_loop_stops_at_its_iteration_limit(table: Any) -> None:
     problem, spheres, _ = table
     start, goal = problem.start, problem.goals[0]
-    needed = plan_rrt_connect(start, goal, SPACE, spheres, seed=1, time_budget_s=math.inf).iterations
-    assert needed > 1
+    # A seed whose search needs more than one iteration, so that a limit below it leaves trees.
+    searches = (
+        (seed, plan_rrt_connect(start, goal, SPACE, spheres, seed=seed, time_budget_s=math.inf))
+        for seed in range(20)
+    )
+    seed, needed = next((seed, result.iterations) for seed, result in searches if result.iterations > 1)
     hyperparameters = RrtConnectHyperparameters(max_iterations=needed - 1)
-    result = plan_rrt_connect(start, goal, SPACE, spheres, hyperparameters, seed=1, time_budget_s=math.inf)
+    result = plan_rrt_connect(start, goal, SPACE, spheres, hyperparameters, seed=seed, time_budget_s=math.inf)
     assert result.status is PlanStatus.ITERATION_LIMIT
     assert result.path is None and result.iterations == needed - 1 and result.nodes > 2
 

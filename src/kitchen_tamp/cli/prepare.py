@@ -90,18 +90,14 @@ def _ahead_of_time(what: str, compile_module: Callable[[], object]) -> None:
 
 
 def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
-    """The ends and straight line of a compiled plan, and one iteration of RRT-Connect's compiled
-    loop (`compiled_rrt_connect`), from ``home`` to itself."""
+    """RRT-Connect's compiled calls (`compiled_rrt_connect.compile_loop_kernels`) from ``home``."""
     from kitchen_tamp.motion import ConfigurationSpace
-    from kitchen_tamp.motion.configuration_space import UniformSamples
-    from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, run_compiled_loop
-    from kitchen_tamp.motion.sampling.rrt_connect_kernel import ends_and_line_checked
+    from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopQuery, compile_loop_kernels
+    from kitchen_tamp.motion.sampling.rrt_connect import RrtConnectHyperparameters
 
-    samples = UniformSamples(ConfigurationSpace(checker.lower, checker.upper), np.random.default_rng(0))
-    settings = LoopSettings(1.0, 0.01, 1, 0.0, math.inf, time.perf_counter)
-    arrays, margin = checker.compiled_validity()
-    run_compiled_loop(home, home, samples, (arrays, margin), settings)
-    ends_and_line_checked(home, home, 0.01, arrays, margin)
+    space = ConfigurationSpace(checker.lower, checker.upper)
+    query = LoopQuery(space, 0, RrtConnectHyperparameters(max_iterations=1), math.inf)
+    compile_loop_kernels(home, checker.compiled_validity(), query)
 
 
 def _compile_planning_kernels(task: Task) -> None:

@@ -80,37 +80,3 @@ class ConfigurationSpace:
                 f"[{self.lower[outside].tolist()}, {self.upper[outside].tolist()}]"
             )
         return array
-
-
-class UniformSamples:
-    """Uniform samples of a space drawn from ``rng`` a block at a time: the same values in the same
-    order as drawing them one by one (numpy fills a block row by row), for one numpy call a block."""
-
-    def __init__(self, space: ConfigurationSpace, rng: np.random.Generator, block: int = 64) -> None:
-        self._space, self._rng, self._block = space, rng, block
-        self._drawn = np.empty((0, space.dimension))
-        self._next = 0
-
-    @property
-    def space(self) -> ConfigurationSpace:
-        """The space sampled."""
-        return self._space
-
-    def next(self) -> JointConfiguration:
-        """The next sample (a fresh array)."""
-        sample: JointConfiguration = self.upcoming()[0].copy()
-        self.skip(1)
-        return sample
-
-    def upcoming(self) -> JointConfigurations:
-        """The samples ``next`` would give next, at least one (a view of the rest of the drawn block),
-        for a consumer that takes several at once and then says how many it used (``skip``)."""
-        if self._next == len(self._drawn):
-            self._drawn, self._next = self._space.sample_uniform(self._rng, self._block), 0
-        return self._drawn[self._next :]
-
-    def skip(self, count: int) -> None:
-        """Mark the first ``count`` of ``upcoming()`` as used."""
-        if not 0 <= count <= len(self._drawn) - self._next:
-            raise ValueError(f"cannot skip {count} of {len(self._drawn) - self._next} upcoming samples")
-        self._next += count

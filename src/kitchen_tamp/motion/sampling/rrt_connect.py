@@ -12,7 +12,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
-from kitchen_tamp.motion.configuration_space import ConfigurationSpace, UniformSamples
+from kitchen_tamp.motion.configuration_space import ConfigurationSpace
 from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.planning_result import (
     PlanningResult,
@@ -20,6 +20,7 @@ from kitchen_tamp.motion.planning_result import (
     endpoint_collision_status,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
+from kitchen_tamp.motion.sampling.counter_samples import CounterSamples
 from kitchen_tamp.motion.sampling.rrt import steer
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
@@ -135,23 +136,14 @@ def plan_rrt_connect(
     deadline = clock_start + time_budget_s
     q_start = space.validated(start, "start")
     q_goal = space.validated(goal, "goal")
-    samples = UniformSamples(space, np.random.default_rng(seed))
     # `CompiledValidity`, asked without isinstance (a runtime protocol check costs 10 us a plan).
     offered = getattr(checker, "compiled_validity", None)
     compiled = offered() if callable(offered) else None
     if compiled is not None:
-        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopSettings, plan_compiled
+        from kitchen_tamp.motion.sampling.compiled_rrt_connect import LoopQuery, plan_compiled
 
-        settings = LoopSettings(
-            params.step_size,
-            params.edge_resolution,
-            params.max_iterations,
-            params.tree_balance,
-            deadline,
-            clock,
-        )
-        outcome = plan_compiled(q_start, q_goal, samples, compiled, settings)
-        return outcome.result(0, clock() - clock_start)
+        query = LoopQuery(space, seed, params, deadline)
+        return plan_compiled(q_start, q_goal, compiled, query).result(clock() - clock_start)
     segments = CountingSegmentChecker(checker, params.edge_resolution)
     start_tree, goal_tree = ConfigurationTree(q_start), ConfigurationTree(q_goal)
 
@@ -171,6 +163,7 @@ def plan_rrt_connect(
     if segments.segment_valid(q_start, q_goal, check_start=False, check_end=False):
         return finish(PlanStatus.SOLVED, 0, np.stack([q_start, q_goal]))
 
+    samples = CounterSamples(space.lower, space.upper, seed)
     growing, other = start_tree, goal_tree
     for iteration in range(1, params.max_iterations + 1):
         if clock() >= deadline:

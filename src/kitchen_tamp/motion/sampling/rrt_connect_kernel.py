@@ -5,14 +5,16 @@ tree one step toward a sample, connect the other tree to the new node, swap. Nea
 found over the trees' arrays (each node's squared norm kept beside it), and every segment is
 checked by the sphere model's compiled segment kernels (`sphere_segments`) on its
 `ValidityArrays`, with no Python between them, in one `validity_scratch` per call (a failed step
-is often one configuration, which costs less than allocating the kernel's buffers). Samples come
-from the caller, a block at a time (drawn by numpy from the seeded generator, the same stream the
-Python loop draws), so the same seed gives the same search.
+is often one configuration, which costs less than allocating the kernel's buffers). Each
+iteration draws its own sample, the iteration's of the seed's counter-based stream
+(`counter_samples`, the same values the Python loop draws), so the same seed gives the same search.
 
-The trees live in arrays the caller owns and passes back in each call: ``nodes`` (2, capacity, d),
-``parents`` (2, capacity), ``squared_norms`` (2, capacity), and ``counters`` (see the ``COUNTER_``
-indices). A call runs until the samples run out, the trees are joined, or the trees may not have
-room for another iteration; the caller checks the clock, grows the arrays and calls again.
+The trees live in arrays passed back in each call: ``nodes`` (2, capacity, d), ``parents``
+(2, capacity), ``squared_norms`` (2, capacity), and ``counters`` (see the ``COUNTER_`` indices).
+`first_block` checks the ends and the straight line, makes the trees and runs the first block of
+iterations; `rrt_connect_iterations` runs a further block. A call runs until its block of iterations
+is done, the trees are joined, or the trees may not have room for another iteration; the caller
+checks the clock, grows the arrays and calls again. Most queries end within the first call.
 """
 
 from __future__ import annotations
@@ -31,6 +33,9 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     validity_scratch,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
+from kitchen_tamp.motion.sampling.counter_samples import counter_uniforms
+
+_sample = numba.njit(cache=True)(counter_uniforms)
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -45,7 +50,10 @@ COUNTER_SIZES = 3
 """Nodes in tree 0 at this index, in tree 1 at the next."""
 COUNTER_JOINED = 5
 """1 once the trees are joined: the start tree's end node at the next index, the goal tree's after."""
-COUNTER_COUNT = 8
+COUNTER_ROOM = 8
+"""Rows an iteration may add to a tree (`room_per_iteration`): a call stops before an iteration
+when a tree has fewer left, for the caller to grow the arrays."""
+COUNTER_COUNT = 9
 
 ENDS_JOINED, START_COLLIDES, GOAL_COLLIDES, LINE_BLOCKED = 0, 1, 2, 3
 """What `ends_and_line_checked` found: the straight line between the ends free, an end colliding,
@@ -64,6 +72,13 @@ def _distance(q0: FloatArray, q1: FloatArray) -> float:
     for j in range(q0.shape[0]):
         squared += (q1[j] - q0[j]) * (q1[j] - q0[j])
     return math.sqrt(squared)
+
+
+@numba.njit(cache=True)
+def room_per_iteration(lower: FloatArray, upper: FloatArray, step_size: float, resolution: float) -> int:
+    """Rows an iteration may add to a tree: its connect's nodes across the whole box, and two."""
+    resolutions_per_step = max(1, round(step_size / resolution))
+    return 2 + math.ceil(_distance(lower, upper) / (resolutions_per_step * resolution))
 
 
 @numba.njit(cache=True)
@@ -178,11 +193,13 @@ def _connect(
 
 @numba.njit(cache=True)
 def rrt_connect_iterations(
-    samples: FloatArray,
+    seed: int,
+    lower: FloatArray,
+    upper: FloatArray,
+    block: int,
     step_size: float,
     resolution: float,
     max_iterations: int,
-    room_per_iteration: int,
     nodes: FloatArray,
     parents: IntArray,
     squared_norms: FloatArray,
@@ -191,23 +208,24 @@ def rrt_connect_iterations(
     margin: float,
     tree_balance: float,
 ) -> int:
-    """Run iterations on the trees, one per row of ``samples`` (the samples used), stopping early
-    when the trees are joined, at ``max_iterations``, or when either tree has fewer than
-    ``room_per_iteration`` free rows left. The trees take turns, except that with a positive
-    ``tree_balance`` a tree more than that many times the other's size waits its turn."""
+    """Run up to ``block`` iterations on the trees (the number run), iteration ``k`` toward sample
+    ``k`` of the stream of ``seed`` in the box (lower, upper), stopping early when the trees are
+    joined, at ``max_iterations``, or when either tree has fewer than ``COUNTER_ROOM`` free rows left.
+    The trees take turns, except that with a positive ``tree_balance`` a tree more than that many
+    times the other's size waits its turn."""
     capacity = nodes.shape[1]
     scratch = validity_scratch(arrays, nodes.shape[2])  # the validity kernel's buffers, for every check
     used = 0
-    for row in range(samples.shape[0]):
+    for _ in range(block):
         if counters[COUNTER_ITERATIONS] >= max_iterations:
             break
-        if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + room_per_iteration > capacity:
+        if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + counters[COUNTER_ROOM] > capacity:
             break
         used += 1
+        target = _sample(seed, counters[COUNTER_ITERATIONS], 1, lower, upper)[0]
         counters[COUNTER_ITERATIONS] += 1
         growing = counters[COUNTER_GROWING]
         other = 1 - growing
-        target = samples[row]
         new = _extend(
             growing,
             target,
@@ -292,3 +310,60 @@ def ends_and_line_checked(
     intervals = _interval_count(start, goal, resolution)
     free, checked = segment_checked_in(start, goal, intervals, False, False, arrays, margin, scratch)
     return (ENDS_JOINED if free else LINE_BLOCKED), 2 + checked
+
+
+@numba.njit(cache=True)
+def first_block(
+    start: FloatArray,
+    goal: FloatArray,
+    seed: int,
+    lower: FloatArray,
+    upper: FloatArray,
+    block: int,
+    step_size: float,
+    resolution: float,
+    max_iterations: int,
+    capacity: int,
+    arrays: ValidityArrays,
+    margin: float,
+    tree_balance: float,
+) -> tuple[int, int, FloatArray, FloatArray, IntArray, FloatArray, IntArray]:
+    """A query's first call: `ends_and_line_checked`, then, when the straight line is blocked, the
+    trees rooted at ``start`` (tree 0) and ``goal`` with ``capacity`` rows each and up to ``block``
+    of `rrt_connect_iterations` on them. Returns what the ends and line found, the configurations
+    they checked, the path (the ends when the line is free, the joined path when the trees were
+    joined, else no rows), and the trees' ``nodes``, ``parents``, ``squared_norms`` and
+    ``counters``, for further calls."""
+    found, checked = ends_and_line_checked(start, goal, resolution, arrays, margin)
+    dimension = start.shape[0]
+    nodes = np.empty((2, capacity, dimension))
+    parents = np.empty((2, capacity), dtype=np.int64)
+    squared_norms = np.empty((2, capacity))
+    counters = np.zeros(COUNTER_COUNT, dtype=np.int64)
+    counters[COUNTER_ROOM] = room_per_iteration(lower, upper, step_size, resolution)
+    _add(0, start, NO_PARENT, nodes, parents, squared_norms, counters)
+    _add(1, goal, NO_PARENT, nodes, parents, squared_norms, counters)
+    path = np.empty((0, dimension))
+    if found == ENDS_JOINED:
+        path = np.empty((2, dimension))
+        path[0], path[1] = start, goal
+    elif found == LINE_BLOCKED:
+        rrt_connect_iterations(
+            seed,
+            lower,
+            upper,
+            block,
+            step_size,
+            resolution,
+            max_iterations,
+            nodes,
+            parents,
+            squared_norms,
+            counters,
+            arrays,
+            margin,
+            tree_balance,
+        )
+        if counters[COUNTER_JOINED]:
+            path = joined_path(nodes, parents, counters)
+    return found, checked, path, nodes, parents, squared_norms, counters

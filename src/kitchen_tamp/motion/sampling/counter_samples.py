@@ -1,0 +1,76 @@
+"""RRT-Connect's samples as a function of (seed, iteration): a counter-based stream, SplitMix64's.
+
+Sample ``k`` of a seed is computed from ``k`` alone, so the compiled loop (`rrt_connect_kernel`)
+draws each iteration's sample in the iteration, with no generator to create in Python and no block
+of samples handed in, and the Python loop draws the very same values here (`CounterSamples`).
+A query is then one compiled call, where creating numpy's generator cost a cold query 65 us, more
+than a tenth of one on MotionBenchMaker's tables (docs/motion.md, "One compiled call a query").
+
+SplitMix64 (Steele, Lea and Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014;
+``java.util.SplittableRandom``) steps its state by a fixed odd constant and returns the state
+through a finaliser, so its ``n``-th output is the finaliser of ``key + n * GAMMA``: a counter-based
+generator. The seed (a non-negative integer below 2^64) is the starting state, as
+``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated streams through the
+finaliser. A uniform is the output's top 53 bits over
+2^53, as numpy draws doubles.
+
+`counter_uniforms` is written in numpy's array operations on ``uint64`` (which wrap), so that numba
+compiles this same source for the kernel and the two loops draw the same bits.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.collision_checker import JointConfiguration, JointConfigurations
+
+GAMMA = np.uint64(0x9E3779B97F4A7C15)
+"""SplitMix64's step: the odd integer nearest 2^64 over the golden ratio."""
+_MIX_FIRST = np.uint64(0xBF58476D1CE4E5B9)
+_MIX_SECOND = np.uint64(0x94D049BB133111EB)
+_UNIT = 2.0**-53
+
+
+def counter_uniforms(
+    seed: int,
+    first: int,
+    count: int,
+    lower: npt.NDArray[np.float64],
+    upper: npt.NDArray[np.float64],
+) -> JointConfigurations:
+    """Samples ``first`` .. ``first + count - 1`` of the stream of ``seed`` in the box (lower, upper), shape
+    (count, d): joint ``j`` of sample ``k`` is ``lower + (upper - lower) u`` with ``u`` the stream's
+    output ``k d + j`` as a uniform in [0, 1)."""
+    dimension = lower.shape[0]
+    counters = np.arange(first * dimension, (first + count) * dimension).astype(np.uint64)
+    bits = np.uint64(seed) + (counters + np.uint64(1)) * GAMMA
+    bits = (bits ^ (bits >> np.uint64(30))) * _MIX_FIRST  # the finaliser (Stafford's "Mix13")
+    bits = (bits ^ (bits >> np.uint64(27))) * _MIX_SECOND
+    bits = bits ^ (bits >> np.uint64(31))
+    units = (bits >> np.uint64(11)).astype(np.float64) * _UNIT
+    return lower + (upper - lower) * units.reshape(count, dimension)
+
+
+class CounterSamples:
+    """The stream of ``seed`` in the box (lower, upper), one sample at a time (as the Python loop
+    takes them), drawn a block at a time."""
+
+    def __init__(
+        self, lower: npt.NDArray[np.float64], upper: npt.NDArray[np.float64], seed: int, block: int = 64
+    ) -> None:
+        self._lower, self._upper, self._block = lower, upper, block
+        self._seed = seed
+        self._drawn = np.empty((0, lower.shape[0]))
+        self._first = 0
+        self._next = 0
+
+    def next(self) -> JointConfiguration:
+        """The next sample (a fresh array)."""
+        if self._next == self._drawn.shape[0]:
+            self._first += self._drawn.shape[0]
+            self._drawn = counter_uniforms(self._seed, self._first, self._block, self._lower, self._upper)
+            self._next = 0
+        self._next += 1
+        sample: JointConfiguration = self._drawn[self._next - 1].copy()
+        return sample
