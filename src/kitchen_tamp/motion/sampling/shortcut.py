@@ -21,8 +21,10 @@ that turns out free costs its whole length / `edge_resolution` checks. So:
 
 from __future__ import annotations
 
+import bisect
+import itertools
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +36,8 @@ from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 MIN_IMPROVEMENT = 1e-9
 """A shortcut must shorten the path by more than this (radians) to be taken."""
+TRIES_DRAWN_AT_ONCE = 64
+"""Random tries whose two uniforms are drawn in one numpy call."""
 
 
 @dataclass(frozen=True)
@@ -123,39 +127,53 @@ def _piece_known_free(
     return segments.segment_valid(q0, q1, check_start=False, check_end=False)
 
 
-def _nearest_grid_configuration(
-    path: JointPath, segment: int, fraction: float, resolution: float
-) -> tuple[JointConfiguration, int, int]:
-    """(configuration, its grid index, interval count) of the grid point of `path`'s
-    `segment` nearest to `fraction` of the way along it."""
-    intervals = interval_count(path[segment], path[segment + 1], resolution)
-    index = min(max(round(fraction * intervals), 0), intervals)
-    return _grid_configuration(path[segment], path[segment + 1], index, intervals), index, intervals
+@dataclass(frozen=True)
+class _Arcs:
+    """A path's segment lengths, their running sums from the start (one more, beginning at 0) and
+    the intervals each segment is checked in: what every random try on the path reads, computed
+    once per path rather than per try."""
+
+    lengths: list[float]
+    cumulative: list[float]
+    intervals: list[int]
+
+    @classmethod
+    def of(cls, path: JointPath, resolution: float) -> _Arcs:
+        lengths = segment_lengths(path).tolist()
+        intervals = [interval_count(q0, q1, resolution) for q0, q1 in itertools.pairwise(path)]
+        return cls(lengths, [0.0, *itertools.accumulate(lengths)], intervals)
+
+    def grid_point(self, path: JointPath, arc_length: float) -> tuple[int, int]:
+        """(segment, grid index) of the configuration at which the segment holding ``arc_length``
+        was checked nearest to it."""
+        segment = min(bisect.bisect_right(self.cumulative, arc_length) - 1, len(path) - 2)
+        fraction = (arc_length - self.cumulative[segment]) / max(self.lengths[segment], 1e-300)
+        intervals = self.intervals[segment]
+        return segment, min(max(round(fraction * intervals), 0), intervals)
 
 
 def _try_shortcut(
     path: JointPath,
+    arcs: _Arcs,
     segments: CountingSegmentChecker,
-    rng: np.random.Generator,
+    units: Sequence[float],
     min_gain_per_length: float,
 ) -> JointPath | None:
-    """Join two random points along the path (snapped to the checked grid) by a straight
-    segment if that gains enough length and is free."""
-    lengths = segment_lengths(path)
-    cumulative = np.concatenate([[0.0], np.cumsum(lengths)])
-    arc_lengths = np.sort(rng.uniform(0.0, cumulative[-1], size=2))
-    first, last = np.minimum(np.searchsorted(cumulative, arc_lengths, side="right") - 1, len(path) - 2)
+    """Join the two points along the path at ``units`` (uniforms in [0, 1)) of its length (snapped
+    to the checked grid) by a straight segment if that gains enough length and is free."""
+    low_arc, high_arc = sorted(unit * arcs.cumulative[-1] for unit in units)
+    first, low_index = arcs.grid_point(path, low_arc)
+    last, high_index = arcs.grid_point(path, high_arc)
     if first >= last:
         return None
-    fractions = (arc_lengths - cumulative[[first, last]]) / np.maximum(lengths[[first, last]], 1e-300)
-    resolution = segments.resolution
-    q_low, low_index, low_intervals = _nearest_grid_configuration(path, first, fractions[0], resolution)
-    q_high, high_index, high_intervals = _nearest_grid_configuration(path, last, fractions[1], resolution)
+    low_intervals, high_intervals = arcs.intervals[first], arcs.intervals[last]
     replaced = (
-        lengths[first] * (1.0 - low_index / low_intervals)
-        + lengths[first + 1 : last].sum()
-        + lengths[last] * (high_index / high_intervals)
+        arcs.lengths[first] * (1.0 - low_index / low_intervals)
+        + sum(arcs.lengths[first + 1 : last])
+        + arcs.lengths[last] * (high_index / high_intervals)
     )
+    q_low = _grid_configuration(path[first], path[first + 1], low_index, low_intervals)
+    q_high = _grid_configuration(path[last], path[last + 1], high_index, high_intervals)
     direct = float(np.linalg.norm(q_high - q_low))
     gain = replaced - direct
     if gain <= MIN_IMPROVEMENT or gain < min_gain_per_length * direct:
@@ -291,15 +309,21 @@ def shortcut_path(
     iterations = 0
     unsuccessful_in_a_row = 0
     patience = params.max_unsuccessful_tries
+    arcs = _Arcs.of(current, params.edge_resolution)
+    units: list[list[float]] = []
     while iterations < params.max_iterations and len(current) > 2:
         if (patience is not None and unsuccessful_in_a_row >= patience) or clock() >= deadline:
             break
+        if iterations % TRIES_DRAWN_AT_ONCE == 0:  # the values drawing two per try gives
+            units = rng.random((TRIES_DRAWN_AT_ONCE, 2)).tolist()
+        unit_pair = units[iterations % TRIES_DRAWN_AT_ONCE]
+        shorter = _try_shortcut(current, arcs, segments, unit_pair, params.min_gain_per_length)
         iterations += 1
-        shorter = _try_shortcut(current, segments, rng, params.min_gain_per_length)
         if shorter is None:
             unsuccessful_in_a_row += 1
         else:
             current = _without_repeats(shorter)
+            arcs = _Arcs.of(current, params.edge_resolution)
             shortcuts += 1
             unsuccessful_in_a_row = 0
     if params.prune_waypoints and len(current) > 2:
