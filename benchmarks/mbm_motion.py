@@ -53,12 +53,17 @@ VAMP_PUBLISHED_US = {"solve median": 35.0, "solve p95": 343.3, "total median": 9
 """VAMP's RRT-Connect on MotionBenchMaker's 700 Panda problems (699 valid, all solved), microseconds:
 planning time median and 95th percentile, planning + simplification median (vamp-planner 0.6.4,
 resources/README.md, "MotionBenchMaker Reference Timings", Panda, AMD Ryzen 9 7950X)."""
-MBM_SEARCH = RrtConnectHyperparameters(tree_balance=1.5, max_iterations=10**9)
-"""Our RRT-Connect on these problems: a tree more than 1.5 times the other's size waits its turn (the
-kitchen's planner alternates), bounded by the budget alone (not 10,000 iterations). On bookshelf_small's
-100 problems (seed 0, 1 CPU s) it solved all 100 with a median of 2.2 ms CPU; strict turns took a
-median of 6.3 ms over the first 30 and missed problem 6 (docs/motion.md, "A compiled loop, and the
-narrow passages")."""
+MBM_SEARCH = RrtConnectHyperparameters(step_size=1.5, tree_balance=1.5, max_iterations=10**9)
+"""Our RRT-Connect on these problems: steps of 1.5 rad (the kitchen's planner takes 1 rad; OMPL's
+RRTConnect, by default a fifth of the space's extent, 2.68 rad here), a tree more than 1.5 times the
+other's size waits its turn (the kitchen's planner alternates), bounded by the budget alone (not
+10,000 iterations). Chosen on each scenario's first 40 problems and confirmed on all 100
+(`benchmarks/mbm_search.py SCENARIO --problems 100 --steps 1 1.5 2 2.68 --balances 1.5`, docs/motion.md,
+"A longer step"): against 1 rad, planning medians 8-29% lower on the table scenarios and the shelves,
+12% higher on the cage; 2 rad and more lower the medians a little further but lengthen
+bookshelf_small's tail (95th percentile 6 -> 36 ms). The balance: on bookshelf_small's 100 problems
+strict turns took a median of 6.3 ms over the first 30 and missed problem 6, the balance 2.2 ms
+(docs/motion.md, "A compiled loop, and the narrow passages")."""
 PLANNERS = ("ours", "OMPL, same checker", "OMPL, PyBullet checker")
 
 
