@@ -38,7 +38,8 @@ def joint_distance(q0: npt.ArrayLike, q1: npt.ArrayLike) -> float:
     Not ``np.linalg.norm``: its sum goes through BLAS, whose order of additions depends on
     the CPU's vector width, and a move whose length is a whole number of resolutions (an
     RRT step is) would then be cut into one interval more on one machine than on another.
-    The compiled RRT-Connect loop sums the same way (``rrt_connect_kernel._distance``)."""
+    The compiled RRT-Connect loop and shortcut sum the same way
+    (``rrt_connect_kernel.joint_distance``)."""
     squared = 0.0
     for d in (np.asarray(q1, dtype=float) - np.asarray(q0, dtype=float)).tolist():
         squared += d * d

@@ -57,6 +57,7 @@ def _compile_kernels() -> None:
     checker.is_valid_without_padding(home)
     SphereClearance(checker.model, 0.005, ends=home)(home)
     _compile_rrt_connect_loop(checker, home[0])
+    _compile_shortcut_steps(checker, home[0])
     _compile_sphere_kernels_ahead_of_time(checker, home)
     _compile_planning_kernels(task)
 
@@ -98,6 +99,20 @@ def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray
     space = ConfigurationSpace(checker.lower, checker.upper)
     query = LoopQuery(space, 0, RrtConnectHyperparameters(max_iterations=1), math.inf)
     compile_loop_kernels(home, checker.compiled_validity(), query)
+
+
+def _compile_shortcut_steps(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
+    """The shortcut's compiled steps (`compiled_shortcut.CompiledShortcutSteps`), each once on a
+    short path through ``home``."""
+    from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
+    from kitchen_tamp.motion.sampling.compiled_shortcut import CompiledShortcutSteps
+    from kitchen_tamp.motion.sampling.shortcut import ShortcutHyperparameters
+
+    path = home + np.outer([0.0, 0.01, 0.02], np.eye(len(home))[0])
+    steps = CompiledShortcutSteps(checker.compiled_validity(), PLANNING_RESOLUTION_RAD)
+    steps.connect_furthest(path)
+    steps.random_tries(path, np.full((1, 2), 0.5), ShortcutHyperparameters(), math.inf)
+    steps.cut_corners(steps.prune(path))
 
 
 def _compile_planning_kernels(task: Task) -> None:

@@ -61,13 +61,14 @@ or the ends valid and the line between them not."""
 
 
 @numba.njit(cache=True)
-def _interval_count(q0: FloatArray, q1: FloatArray, resolution: float) -> int:
+def interval_count(q0: FloatArray, q1: FloatArray, resolution: float) -> int:
     """`kitchen_tamp.joint_spacing.interval_count` (the same sum as `joint_spacing.joint_distance`)."""
-    return max(1, math.ceil(_distance(q0, q1) / resolution))
+    return max(1, math.ceil(joint_distance(q0, q1) / resolution))
 
 
 @numba.njit(cache=True)
-def _distance(q0: FloatArray, q1: FloatArray) -> float:
+def joint_distance(q0: FloatArray, q1: FloatArray) -> float:
+    """`kitchen_tamp.joint_spacing.joint_distance`: the same sum, joint by joint in order."""
     squared = 0.0
     for j in range(q0.shape[0]):
         squared += (q1[j] - q0[j]) * (q1[j] - q0[j])
@@ -78,7 +79,7 @@ def _distance(q0: FloatArray, q1: FloatArray) -> float:
 def room_per_iteration(lower: FloatArray, upper: FloatArray, step_size: float, resolution: float) -> int:
     """Rows an iteration may add to a tree: its connect's nodes across the whole box, and two."""
     resolutions_per_step = max(1, round(step_size / resolution))
-    return 2 + math.ceil(_distance(lower, upper) / (resolutions_per_step * resolution))
+    return 2 + math.ceil(joint_distance(lower, upper) / (resolutions_per_step * resolution))
 
 
 @numba.njit(cache=True)
@@ -134,9 +135,9 @@ def _extend(
     index, or -1 when the step collides."""
     near = _nearest(tree, target, nodes, squared_norms, counters[COUNTER_SIZES + tree])
     q_near = nodes[tree, near].copy()
-    distance = _distance(q_near, target)
+    distance = joint_distance(q_near, target)
     q_new = target.copy() if distance <= step_size else q_near + (target - q_near) * (step_size / distance)
-    intervals = _interval_count(q_near, q_new, resolution)
+    intervals = interval_count(q_near, q_new, resolution)
     free, checked = segment_checked_in(q_near, q_new, intervals, False, True, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
@@ -162,7 +163,7 @@ def _connect(
     (`rrt_connect.connect_tree`): the last node's index and whether it is ``target``."""
     near = _nearest(tree, target, nodes, squared_norms, counters[COUNTER_SIZES + tree])
     q_near = nodes[tree, near].copy()
-    distance = _distance(q_near, target)
+    distance = joint_distance(q_near, target)
     if distance == 0.0:
         return near, True
     free_length, checked = free_prefix_checked_in(
@@ -183,7 +184,7 @@ def _connect(
     if not reached:
         return index, False
     last = nodes[tree, index].copy()
-    intervals = _interval_count(last, target, resolution)
+    intervals = interval_count(last, target, resolution)
     free, checked = segment_checked_in(last, target, intervals, False, False, arrays, margin, scratch)
     counters[COUNTER_CHECKS] += checked
     if not free:
@@ -307,7 +308,7 @@ def ends_and_line_checked(
         return START_COLLIDES, 2
     if not valid[1]:
         return GOAL_COLLIDES, 2
-    intervals = _interval_count(start, goal, resolution)
+    intervals = interval_count(start, goal, resolution)
     free, checked = segment_checked_in(start, goal, intervals, False, False, arrays, margin, scratch)
     return (ENDS_JOINED if free else LINE_BLOCKED), 2 + checked
 

@@ -26,12 +26,14 @@ import itertools
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
-from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD, interval_count
+from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD, interval_count, joint_distance
 from kitchen_tamp.motion.collision_checker import CollisionChecker, JointConfiguration
-from kitchen_tamp.motion.joint_path import JointPath, path_length, segment_lengths
+from kitchen_tamp.motion.joint_path import JointPath
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 MIN_IMPROVEMENT = 1e-9
@@ -139,7 +141,7 @@ class _Arcs:
 
     @classmethod
     def of(cls, path: JointPath, resolution: float) -> _Arcs:
-        lengths = segment_lengths(path).tolist()
+        lengths = [joint_distance(q0, q1) for q0, q1 in itertools.pairwise(path)]
         intervals = [interval_count(q0, q1, resolution) for q0, q1 in itertools.pairwise(path)]
         return cls(lengths, [0.0, *itertools.accumulate(lengths)], intervals)
 
@@ -174,7 +176,7 @@ def _try_shortcut(
     )
     q_low = _grid_configuration(path[first], path[first + 1], low_index, low_intervals)
     q_high = _grid_configuration(path[last], path[last + 1], high_index, high_intervals)
-    direct = float(np.linalg.norm(q_high - q_low))
+    direct = joint_distance(q_low, q_high)
     gain = replaced - direct
     if gain <= MIN_IMPROVEMENT or gain < min_gain_per_length * direct:
         return None
@@ -273,6 +275,66 @@ def prune_waypoints(path: JointPath, segments: CountingSegmentChecker) -> JointP
     return np.stack(kept)
 
 
+def _length(path: JointPath) -> float:
+    """The path's length, its segments' `joint_distance`s summed in order."""
+    return sum((joint_distance(q0, q1) for q0, q1 in itertools.pairwise(path)), 0.0)
+
+
+class _PythonSteps:
+    """The shortcut's steps through a `CountingSegmentChecker` of any checker (a
+    `compiled_shortcut.CompiledShortcutSteps` takes them for the sphere model): each counts its
+    checks, and the random tries their tries, shortcuts and tries in a row that took none."""
+
+    def __init__(self, checker: CollisionChecker, resolution: float) -> None:
+        self.segments = CountingSegmentChecker(checker, resolution)
+        self.tries = self.shortcuts = self.unsuccessful = 0
+
+    @property
+    def checks(self) -> int:
+        return self.segments.configurations_checked
+
+    def connect_furthest(self, path: JointPath) -> JointPath:
+        kept = _furthest_vertex_jumps(path, self.segments)
+        self.shortcuts += int(np.count_nonzero(np.diff(kept) > 1))
+        return np.asarray(path[kept], dtype=np.float64)
+
+    def random_tries(
+        self,
+        path: JointPath,
+        units: npt.NDArray[np.float64],
+        params: ShortcutHyperparameters,
+        deadline: float,
+    ) -> JointPath:
+        """A try per row of ``units`` until they run out or a limit is hit (the clock read per try)."""
+        arcs = _Arcs.of(path, self.segments.resolution)
+        for unit_pair in units.tolist():
+            if _tries_over(self.tries, self.unsuccessful, len(path), params) or params.clock() >= deadline:
+                break
+            shorter = _try_shortcut(path, arcs, self.segments, unit_pair, params.min_gain_per_length)
+            self.tries += 1
+            if shorter is None:
+                self.unsuccessful += 1
+            else:
+                path = _without_repeats(shorter)
+                arcs = _Arcs.of(path, self.segments.resolution)
+                self.shortcuts += 1
+                self.unsuccessful = 0
+        return path
+
+    def prune(self, path: JointPath) -> JointPath:
+        return prune_waypoints(path, self.segments)
+
+    def cut_corners(self, path: JointPath) -> JointPath:
+        return _without_repeats(cut_corners(path, self.segments))
+
+
+def _tries_over(tries: int, unsuccessful: int, waypoints: int, params: ShortcutHyperparameters) -> bool:
+    """Whether random shortcutting stops: the tries used up, the patience spent, or one segment left."""
+    patience = params.max_unsuccessful_tries
+    patient = patience is None or unsuccessful < patience
+    return tries >= params.max_iterations or waypoints <= 2 or not patient
+
+
 def shortcut_path(
     path: JointPath,
     checker: CollisionChecker,
@@ -293,51 +355,44 @@ def shortcut_path(
     `path`, as it does for our planners). Endpoints are kept exactly; the
     result is never longer. The result depends only on the path, the checker,
     the hyperparameters and `seed`, unless `time_budget_s` runs out first.
+    With the sphere model as the checker (a `CompiledValidity` that answers), the steps run
+    compiled (`compiled_shortcut`): the same path and counts, the clock read between blocks of
+    tries instead of before each.
     """
     params = hyperparameters or ShortcutHyperparameters()
     clock = params.clock
     clock_start = clock()
     deadline = clock_start + time_budget_s
     rng = np.random.default_rng(seed)
-    segments = CountingSegmentChecker(checker, params.edge_resolution)
+    steps = _steps_for(checker, params.edge_resolution)
     current = _without_repeats(np.array(path, dtype=np.float64))
-    shortcuts = 0
     if params.connect_furthest_vertices and len(current) > 2:
-        kept = _furthest_vertex_jumps(current, segments)
-        shortcuts += int(np.count_nonzero(np.diff(kept) > 1))
-        current = np.asarray(current[kept], dtype=np.float64)
-    iterations = 0
-    unsuccessful_in_a_row = 0
-    patience = params.max_unsuccessful_tries
-    arcs = _Arcs.of(current, params.edge_resolution)
-    units: list[list[float]] = []
-    while iterations < params.max_iterations and len(current) > 2:
-        if (patience is not None and unsuccessful_in_a_row >= patience) or clock() >= deadline:
-            break
-        if iterations % TRIES_DRAWN_AT_ONCE == 0:  # the values drawing two per try gives
-            units = rng.random((TRIES_DRAWN_AT_ONCE, 2)).tolist()
-        unit_pair = units[iterations % TRIES_DRAWN_AT_ONCE]
-        shorter = _try_shortcut(current, arcs, segments, unit_pair, params.min_gain_per_length)
-        iterations += 1
-        if shorter is None:
-            unsuccessful_in_a_row += 1
-        else:
-            current = _without_repeats(shorter)
-            arcs = _Arcs.of(current, params.edge_resolution)
-            shortcuts += 1
-            unsuccessful_in_a_row = 0
+        current = steps.connect_furthest(current)
+    while not _tries_over(steps.tries, steps.unsuccessful, len(current), params) and clock() < deadline:
+        current = steps.random_tries(current, rng.random((TRIES_DRAWN_AT_ONCE, 2)), params, deadline)
     if params.prune_waypoints and len(current) > 2:
-        pruned = prune_waypoints(current, segments)
-        if path_length(pruned) <= path_length(current):
+        pruned = steps.prune(current)
+        if _length(pruned) <= _length(current):
             current = pruned
     for _ in range(params.corner_cutting_passes):
         if len(current) <= 2 or clock() >= deadline:
             break
-        current = _without_repeats(cut_corners(current, segments))
+        current = steps.cut_corners(current)
     return SmoothingResult(
         path=current,
-        iterations=iterations,
-        shortcuts_taken=shortcuts,
-        collision_checks=segments.configurations_checked,
+        iterations=steps.tries,
+        shortcuts_taken=steps.shortcuts,
+        collision_checks=steps.checks,
         smoothing_time_s=clock() - clock_start,
     )
+
+
+def _steps_for(checker: CollisionChecker, resolution: float) -> Any:
+    """The compiled steps when the checker offers its compiled validity, else the Python ones."""
+    offered = getattr(checker, "compiled_validity", None)  # `CompiledValidity`, without isinstance
+    compiled = offered() if callable(offered) else None
+    if compiled is None:
+        return _PythonSteps(checker, resolution)
+    from kitchen_tamp.motion.sampling.compiled_shortcut import CompiledShortcutSteps
+
+    return CompiledShortcutSteps(compiled, resolution)
