@@ -43,6 +43,12 @@ def test_same_seed_same_path(unit_square: ConfigurationSpace, wall_with_gap: Box
     assert paths[0].shape != paths[2].shape or not np.array_equal(paths[0], paths[2])
 
 
+@pytest.mark.parametrize("seed", [-1, 2**63])
+def test_a_seed_outside_the_streams_is_refused(unit_square: ConfigurationSpace, seed: int) -> None:
+    with pytest.raises(ValueError, match="seed must be a non-negative integer below 2"):
+        plan_rrt_connect(START, GOAL, unit_square, BoxBallWorld(), seed=seed)
+
+
 def test_enclosed_goal_fails_with_iteration_limit(
     unit_square: ConfigurationSpace, enclosed_goal_world: BoxBallWorld
 ) -> None:

@@ -9,9 +9,9 @@ than a tenth of one on MotionBenchMaker's tables (docs/motion.md, "One compiled 
 SplitMix64 (Steele, Lea and Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014;
 ``java.util.SplittableRandom``) steps its state by a fixed odd constant and returns the state
 through a finaliser, so its ``n``-th output is the finaliser of ``key + n * GAMMA``: a counter-based
-generator. The seed (a non-negative integer below 2^64) is the starting state, as
-``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated streams through the
-finaliser. A uniform is the output's top 53 bits over
+generator. The seed (a non-negative integer below 2^63, as `plan_rrt_connect` checks) is the
+starting state, as ``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated
+streams through the finaliser. A uniform is the output's top 53 bits over
 2^53, as numpy draws doubles.
 
 `counter_uniforms` is written in numpy's array operations on ``uint64`` (which wrap), so that numba

@@ -127,9 +127,12 @@ def plan_rrt_connect(
     With the sphere model as the checker (a `CompiledValidity` that answers), the loop runs
     compiled (`compiled_rrt_connect`, the ends and the straight line too): the same search from the
     same samples, without Python between the segment checks. Raises `InvalidMotionQueryError` for
-    a malformed or out-of-bounds start/goal; a start or goal in collision is reported by the
-    result's status.
+    a malformed or out-of-bounds start/goal, `ValueError` for a seed outside [0, 2^63) (the
+    samples' stream, `counter_samples`); a start or goal in collision is reported by the result's
+    status.
     """
+    if not 0 <= seed < 2**63:
+        raise ValueError(f"seed must be a non-negative integer below 2^63, got {seed}")
     params = hyperparameters or RrtConnectHyperparameters()
     clock = params.clock
     clock_start = clock()
