@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Generic, TypeVar
+from pathlib import Path
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 import pytest
@@ -37,6 +38,21 @@ def wall_with_gap() -> BoxBallWorld:
 @pytest.fixture
 def enclosed_goal_world() -> BoxBallWorld:
     return BoxBallWorld(boxes=ENCLOSED_GOAL_WORLD.boxes)
+
+
+@pytest.fixture(scope="module")
+def mbm_table(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, Any, Any]]:
+    """MotionBenchMaker's table_pick problem 7 (written out in `test_motion_bench_maker`), with its
+    sphere model and Drake's model (imported here, so that other tests do not load Drake)."""
+    from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
+    from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+    from kitchen_tamp.motion.motion_bench_maker import mbm_scene, read_mbm_problem
+    from kitchen_tamp.world import panda_urdf_path
+    from tests.motion.test_motion_bench_maker import TABLE_REQUEST, TABLE_SCENE
+
+    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
+    scene = mbm_scene(problem, panda_urdf_path(), Path(tmp_path_factory.mktemp("table")))
+    yield problem, SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,6 @@ Python loop from the same seed, paths free for Drake, the same path for the same
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -22,18 +20,13 @@ from kitchen_tamp.motion import (
     densify_path,
     plan_rrt_connect,
 )
-from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
 from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
 from kitchen_tamp.motion.motion_bench_maker import (
     MBM_PANDA_LOWER,
     MBM_PANDA_UPPER,
-    mbm_scene,
-    read_mbm_problem,
 )
 from kitchen_tamp.motion.sampling import compiled_rrt_connect
 from kitchen_tamp.motion.segment_checking import CompiledValidity
-from kitchen_tamp.world import panda_urdf_path
-from tests.motion.test_motion_bench_maker import TABLE_REQUEST, TABLE_SCENE
 
 SPACE = ConfigurationSpace(MBM_PANDA_LOWER, MBM_PANDA_UPPER)
 
@@ -57,26 +50,17 @@ class PythonLoopSpheres:
         return self.spheres.free_prefix_checked(*arguments)
 
 
-@pytest.fixture(scope="module")
-def table(
-    tmp_path_factory: pytest.TempPathFactory,
-) -> Iterator[tuple[Any, SphereCollisionChecker, DrakeCollisionChecker]]:
-    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
-    scene = mbm_scene(problem, panda_urdf_path(), Path(tmp_path_factory.mktemp("table")))
-    yield problem, SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
-
-
-def test_the_sphere_model_offers_its_compiled_validity(table: Any) -> None:
-    _, spheres, _ = table
+def test_the_sphere_model_offers_its_compiled_validity(mbm_table: Any) -> None:
+    _, spheres, _ = mbm_table
     assert isinstance(spheres, CompiledValidity) and spheres.compiled_validity() is not None
     assert not isinstance(PythonLoopSpheres(spheres), CompiledValidity)
 
 
 @pytest.mark.parametrize(("seed", "tree_balance"), [(0, 0.0), (1, 0.0), (2, 0.0), (0, 1.5), (1, 1.5)])
 def test_the_compiled_loop_searches_as_the_python_loop_does(
-    table: Any, seed: int, tree_balance: float
+    mbm_table: Any, seed: int, tree_balance: float
 ) -> None:
-    problem, spheres, _ = table
+    problem, spheres, _ = mbm_table
     start, goal = problem.start, problem.goals[0]
     search = RrtConnectHyperparameters(tree_balance=tree_balance)
     compiled = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=seed, time_budget_s=math.inf)
@@ -90,13 +74,13 @@ def test_the_compiled_loop_searches_as_the_python_loop_does(
 
 
 def test_the_compiled_loop_searches_alike_across_blocks_and_grown_trees(
-    table: Any, monkeypatch: pytest.MonkeyPatch
+    mbm_table: Any, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """Blocks of two iterations and trees of 16 rows at first: the search runs over several calls,
     growing the trees between them, and is still the Python loop's."""
     monkeypatch.setattr(compiled_rrt_connect, "BLOCK", 2)
     monkeypatch.setattr(compiled_rrt_connect, "INITIAL_CAPACITY", 16)
-    problem, spheres, _ = table
+    problem, spheres, _ = mbm_table
     start, goal = problem.start, problem.goals[0]
     search = RrtConnectHyperparameters(step_size=0.1)
     compiled = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=5, time_budget_s=math.inf)
@@ -111,8 +95,8 @@ def test_the_compiled_loop_searches_alike_across_blocks_and_grown_trees(
 
 
 @pytest.mark.parametrize("seed", [3, 4])
-def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(table: Any, seed: int) -> None:
-    problem, spheres, exact = table
+def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(mbm_table: Any, seed: int) -> None:
+    problem, spheres, exact = mbm_table
     start, goal = problem.start, problem.goals[0]
     paths = [
         plan_rrt_connect(start, goal, SPACE, spheres, seed=seed, time_budget_s=math.inf).require_path()
@@ -124,8 +108,8 @@ def test_compiled_paths_are_free_for_drake_and_the_same_for_the_same_seed(table:
     assert not np.all(exact.is_valid(densify_path(np.stack([start, goal]), 0.01)))  # a detour
 
 
-def test_the_compiled_loop_stops_at_its_iteration_limit(table: Any) -> None:
-    problem, spheres, _ = table
+def test_the_compiled_loop_stops_at_its_iteration_limit(mbm_table: Any) -> None:
+    problem, spheres, _ = mbm_table
     start, goal = problem.start, problem.goals[0]
     # A seed whose search needs more than one iteration, so that a limit below it leaves trees.
     searches = (
@@ -139,10 +123,10 @@ def test_the_compiled_loop_stops_at_its_iteration_limit(table: Any) -> None:
     assert result.path is None and result.iterations == needed - 1 and result.nodes > 2
 
 
-def test_the_compiled_ends_and_straight_line_are_the_python_loops(table: Any) -> None:
+def test_the_compiled_ends_and_straight_line_are_the_python_loops(mbm_table: Any) -> None:
     """Ends in collision and a free straight line end the search before the loop, with the same
     status, path and count as through the Python loop's segment checker."""
-    problem, spheres, _ = table
+    problem, spheres, _ = mbm_table
     start, goal = problem.start, problem.goals[0]
     rng = np.random.default_rng(0)
     samples = SPACE.sample_uniform(rng, 400)

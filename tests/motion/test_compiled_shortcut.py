@@ -4,8 +4,6 @@ shortcuts and checks as its Python steps from the same seed, and paths free for 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -20,26 +18,12 @@ from kitchen_tamp.motion import (
     plan_rrt_connect,
     shortcut_path,
 )
-from kitchen_tamp.motion.geometry.drake import DrakeCollisionChecker
-from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
 from kitchen_tamp.motion.joint_path import JointPath
-from kitchen_tamp.motion.motion_bench_maker import mbm_scene, read_mbm_problem
-from kitchen_tamp.world import panda_urdf_path
 from tests.motion.test_compiled_rrt_connect import SPACE, PythonLoopSpheres
-from tests.motion.test_motion_bench_maker import TABLE_REQUEST, TABLE_SCENE
 
 
-@pytest.fixture(scope="module")
-def table(
-    tmp_path_factory: pytest.TempPathFactory,
-) -> Iterator[tuple[Any, SphereCollisionChecker, DrakeCollisionChecker]]:
-    problem = read_mbm_problem("table_pick", 7, TABLE_SCENE, TABLE_REQUEST)
-    scene = mbm_scene(problem, panda_urdf_path(), Path(tmp_path_factory.mktemp("table")))
-    yield problem, SphereCollisionChecker(scene), DrakeCollisionChecker(scene)
-
-
-def _raw_path(table: Any, seed: int) -> JointPath:
-    problem, spheres, _ = table
+def _raw_path(mbm_table: Any, seed: int) -> JointPath:
+    problem, spheres, _ = mbm_table
     search = RrtConnectHyperparameters(step_size=0.3)  # many short edges: much for the shortcut to do
     start, goal = problem.start, problem.goals[0]
     planned = plan_rrt_connect(start, goal, SPACE, spheres, search, seed=seed, time_budget_s=math.inf)
@@ -56,10 +40,10 @@ def _raw_path(table: Any, seed: int) -> JointPath:
     ],
 )
 def test_the_compiled_steps_shorten_as_the_python_steps_do(
-    table: Any, seed: int, settings: ShortcutHyperparameters
+    mbm_table: Any, seed: int, settings: ShortcutHyperparameters
 ) -> None:
-    _, spheres, _ = table
-    raw = _raw_path(table, seed)
+    _, spheres, _ = mbm_table
+    raw = _raw_path(mbm_table, seed)
     compiled = shortcut_path(raw, spheres, settings, seed=seed, time_budget_s=math.inf)
     python = shortcut_path(raw, PythonLoopSpheres(spheres), settings, seed=seed, time_budget_s=math.inf)
     assert compiled.shortcuts_taken > 0 and compiled.collision_checks > 0
@@ -71,9 +55,9 @@ def test_the_compiled_steps_shorten_as_the_python_steps_do(
     np.testing.assert_array_equal(compiled.path, python.path)
 
 
-def test_compiled_shortcuts_are_free_for_drake_and_shorter(table: Any) -> None:
-    _, spheres, exact = table
-    raw = _raw_path(table, 4)
+def test_compiled_shortcuts_are_free_for_drake_and_shorter(mbm_table: Any) -> None:
+    _, spheres, exact = mbm_table
+    raw = _raw_path(mbm_table, 4)
     smoothed = shortcut_path(raw, spheres, seed=4, time_budget_s=math.inf).path
     np.testing.assert_array_equal(smoothed[[0, -1]], raw[[0, -1]])
     assert path_length(smoothed) < path_length(raw)
