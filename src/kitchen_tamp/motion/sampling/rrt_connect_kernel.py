@@ -303,7 +303,10 @@ def ends_and_line_checked(
     scratch = validity_scratch(arrays, start.shape[0])
     ends = np.empty((2, start.shape[0]))
     ends[0], ends[1] = start, goal
-    valid = valid_rows(ends, arrays, margin, False, scratch)
+    # Stopping at an invalid start leaves the goal unchecked, which the answer does not need; and the
+    # segment checks pass True as well, so the loop compiles one copy of the kernel, not two (numba
+    # specialises on the literal).
+    valid = valid_rows(ends, arrays, margin, True, scratch)
     if not valid[0]:
         return START_COLLIDES, 2
     if not valid[1]:
