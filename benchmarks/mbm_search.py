@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from mbm_motion import mbm_case
+from mbm_motion import MBM_SEARCH, mbm_case
 from mbm_problems import load_problems
 
 from kitchen_tamp.motion import (
@@ -60,8 +60,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scenario", choices=MBM_SCENARIOS)
     parser.add_argument("--problems", type=int, default=30)
-    parser.add_argument("--steps", type=float, nargs="+", default=[1.0])
-    parser.add_argument("--balances", type=float, nargs="+", default=[0.0])
+    parser.add_argument("--steps", type=float, nargs="+", default=[MBM_SEARCH.step_size],
+                        help="rad (default the benchmark's, %(default)s)")
+    parser.add_argument("--balances", type=float, nargs="+", default=[MBM_SEARCH.tree_balance],
+                        help="tree balances (default the benchmark's, %(default)s)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--budget", type=float, default=1.0, help="CPU seconds per problem")
     parser.add_argument("--python-loop", action="store_true", help="each setting through both loops")
