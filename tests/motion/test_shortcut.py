@@ -55,6 +55,15 @@ def test_same_seed_same_result(unit_square: ConfigurationSpace, wall_with_gap: B
     np.testing.assert_array_equal(first, second)
 
 
+@pytest.mark.parametrize("seed", [-1, 2**63])
+def test_a_seed_outside_the_streams_is_refused(
+    unit_square: ConfigurationSpace, wall_with_gap: BoxBallWorld, seed: int
+) -> None:
+    raw = plan_rrt(START, GOAL, unit_square, wall_with_gap, seed=0).require_path()
+    with pytest.raises(ValueError, match="seed must be a non-negative integer below 2"):
+        shortcut_path(raw, wall_with_gap, seed=seed)
+
+
 def test_zero_iterations_only_prunes(wall_with_gap: BoxBallWorld) -> None:
     collinear = np.array([[0.1, 0.1], [0.2, 0.1], [0.3, 0.1], [0.4, 0.45], [0.6, 0.45]])
     params = ShortcutHyperparameters(max_iterations=0, corner_cutting_passes=0)

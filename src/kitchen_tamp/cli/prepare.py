@@ -106,7 +106,7 @@ def _compile_shortcut_steps(checker: SphereCollisionChecker, home: npt.NDArray[n
     short path through ``home``."""
     from kitchen_tamp.joint_spacing import PLANNING_RESOLUTION_RAD
     from kitchen_tamp.motion.sampling.compiled_shortcut import CompiledShortcutSteps
-    from kitchen_tamp.motion.sampling.shortcut import ShortcutHyperparameters
+    from kitchen_tamp.motion.sampling.shortcut_settings import ShortcutHyperparameters
 
     path = home + np.outer([0.0, 0.01, 0.02], np.eye(len(home))[0])
     steps = CompiledShortcutSteps(checker.compiled_validity(), PLANNING_RESOLUTION_RAD)

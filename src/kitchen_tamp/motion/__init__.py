@@ -34,13 +34,8 @@ from kitchen_tamp.motion.planners import (
 from kitchen_tamp.motion.planning_result import MotionPlanningError, PlanningResult, PlanStatus
 from kitchen_tamp.motion.sampling.rrt import RrtHyperparameters, plan_rrt
 from kitchen_tamp.motion.sampling.rrt_connect import RrtConnectHyperparameters, plan_rrt_connect
-from kitchen_tamp.motion.sampling.shortcut import (
-    ShortcutHyperparameters,
-    SmoothingResult,
-    cut_corners,
-    prune_waypoints,
-    shortcut_path,
-)
+from kitchen_tamp.motion.sampling.shortcut import cut_corners, prune_waypoints, shortcut_path
+from kitchen_tamp.motion.sampling.shortcut_settings import ShortcutHyperparameters, SmoothingResult
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
 __all__ = [

@@ -9,13 +9,12 @@ from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
 from kitchen_tamp.motion.sampling.rrt import RrtHyperparameters, plan_rrt, steer
 from kitchen_tamp.motion.sampling.rrt_connect import RrtConnectHyperparameters, plan_rrt_connect
 from kitchen_tamp.motion.sampling.shortcut import (
-    ShortcutHyperparameters,
-    SmoothingResult,
     connect_furthest_vertices,
     cut_corners,
     prune_waypoints,
     shortcut_path,
 )
+from kitchen_tamp.motion.sampling.shortcut_settings import ShortcutHyperparameters, SmoothingResult
 
 __all__ = [
     "ConfigurationTree",

@@ -28,7 +28,7 @@ from kitchen_tamp.motion.sampling.shortcut_kernel import (
 )
 
 if TYPE_CHECKING:
-    from kitchen_tamp.motion.sampling.shortcut import ShortcutHyperparameters
+    from kitchen_tamp.motion.sampling.shortcut_settings import ShortcutHyperparameters
 
 _JUMPS: Any = furthest_vertex_jumps
 """The compiled kernels, untyped for mypy (numba's dispatcher stubs take no argument list)."""

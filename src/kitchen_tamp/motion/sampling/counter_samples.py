@@ -9,7 +9,7 @@ than a tenth of one on MotionBenchMaker's tables (docs/motion.md, "One compiled 
 SplitMix64 (Steele, Lea and Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014;
 ``java.util.SplittableRandom``) steps its state by a fixed odd constant and returns the state
 through a finaliser, so its ``n``-th output is the finaliser of ``key + n * GAMMA``: a counter-based
-generator. The seed (a non-negative integer below 2^63, as `plan_rrt_connect` checks) is the
+generator. The seed (a non-negative integer below 2^63, `checked_seed`) is the
 starting state, as ``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated
 streams through the finaliser. A uniform is the output's top 53 bits over
 2^53, as numpy draws doubles.
@@ -30,6 +30,13 @@ GAMMA = np.uint64(0x9E3779B97F4A7C15)
 _MIX_FIRST = np.uint64(0xBF58476D1CE4E5B9)
 _MIX_SECOND = np.uint64(0x94D049BB133111EB)
 _UNIT = 2.0**-53
+
+
+def checked_seed(seed: int) -> int:
+    """``seed``, when it names a stream (a non-negative integer below 2^63), else a ValueError."""
+    if not 0 <= seed < 2**63:
+        raise ValueError(f"seed must be a non-negative integer below 2^63, got {seed}")
+    return seed
 
 
 def counter_uniforms(

@@ -20,7 +20,7 @@ from kitchen_tamp.motion.planning_result import (
     endpoint_collision_status,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
-from kitchen_tamp.motion.sampling.counter_samples import CounterSamples
+from kitchen_tamp.motion.sampling.counter_samples import CounterSamples, checked_seed
 from kitchen_tamp.motion.sampling.rrt import steer
 from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
 
@@ -131,8 +131,7 @@ def plan_rrt_connect(
     samples' stream, `counter_samples`); a start or goal in collision is reported by the result's
     status.
     """
-    if not 0 <= seed < 2**63:
-        raise ValueError(f"seed must be a non-negative integer below 2^63, got {seed}")
+    seed = checked_seed(seed)
     params = hyperparameters or RrtConnectHyperparameters()
     clock = params.clock
     clock_start = clock()
