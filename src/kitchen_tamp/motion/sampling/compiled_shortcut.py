@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kitchen_tamp.motion.joint_path import JointPath
+from kitchen_tamp.motion.sampling.shortcut import CORNER_CUT_FRACTIONS, MIN_IMPROVEMENT
 from kitchen_tamp.motion.sampling.shortcut_kernel import (
     COUNTER_CHECKS,
     COUNTER_COUNT,
@@ -36,6 +37,8 @@ _TRIES: Any = random_tries
 _PRUNED: Any = pruned
 _CORNERS_CUT: Any = corners_cut
 _WITHOUT_REPEATS: Any = without_repeats
+_FRACTIONS = np.array(CORNER_CUT_FRACTIONS)
+"""`shortcut.CORNER_CUT_FRACTIONS` as the corner-cutting kernel takes them."""
 
 
 class CompiledShortcutSteps:
@@ -76,8 +79,6 @@ class CompiledShortcutSteps:
         deadline: float,
     ) -> JointPath:
         """A try per row of ``units`` until they run out or a limit is hit (the clock not read)."""
-        from kitchen_tamp.motion.sampling.shortcut import MIN_IMPROVEMENT
-
         patience = params.max_unsuccessful_tries or 0
         shorter: JointPath = _TRIES(
             path,
@@ -98,9 +99,6 @@ class CompiledShortcutSteps:
         return kept
 
     def cut_corners(self, path: JointPath) -> JointPath:
-        from kitchen_tamp.motion.sampling.shortcut import CORNER_CUT_FRACTIONS
-
-        fractions = np.array(CORNER_CUT_FRACTIONS)
-        cut = _CORNERS_CUT(path, fractions, self.resolution, self.arrays, self.margin, self.counters)
+        cut = _CORNERS_CUT(path, _FRACTIONS, self.resolution, self.arrays, self.margin, self.counters)
         kept: JointPath = _WITHOUT_REPEATS(cut)
         return kept

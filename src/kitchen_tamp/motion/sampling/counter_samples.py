@@ -1,4 +1,5 @@
-"""RRT-Connect's samples as a function of (seed, iteration): a counter-based stream, SplitMix64's.
+"""Random samples as a function of (seed, index): a counter-based stream, SplitMix64's (RRT-Connect's
+samples, and the shortcut's tries from far along the same stream).
 
 Sample ``k`` of a seed is computed from ``k`` alone, so the compiled loop (`rrt_connect_kernel`)
 draws each iteration's sample in the iteration, with no generator to create in Python and no block
@@ -9,10 +10,9 @@ than a tenth of one on MotionBenchMaker's tables (docs/motion.md, "One compiled 
 SplitMix64 (Steele, Lea and Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014;
 ``java.util.SplittableRandom``) steps its state by a fixed odd constant and returns the state
 through a finaliser, so its ``n``-th output is the finaliser of ``key + n * GAMMA``: a counter-based
-generator. The seed (a non-negative integer below 2^63, `checked_seed`) is the
-starting state, as ``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated
-streams through the finaliser. A uniform is the output's top 53 bits over
-2^53, as numpy draws doubles.
+generator. The seed (a non-negative integer below 2^63, `checked_seed`) is the starting state, as
+``SplittableRandom(seed)`` takes it: seeds next to each other give unrelated streams through the
+finaliser. A uniform is the output's top 53 bits over 2^53, as numpy draws doubles.
 
 `counter_uniforms` is written in numpy's array operations on ``uint64`` (which wrap), so that numba
 compiles this same source for the kernel and the two loops draw the same bits.
