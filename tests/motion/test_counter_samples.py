@@ -3,10 +3,13 @@ one sample at a time as in blocks, and uniform in the box."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numba
 import numpy as np
 
 from kitchen_tamp.motion.sampling.counter_samples import CounterSamples, counter_uniforms
+from kitchen_tamp.motion.sampling.rrt_connect_kernel import sample_into
 
 LOWER = np.array([-2.9, -1.8, -2.9, -3.1, -2.9, -0.1, -2.9])
 UPPER = np.array([2.9, 1.8, 2.9, 0.0, 2.9, 3.8, 2.9])
@@ -20,12 +23,19 @@ def test_the_stream_is_splitmix64() -> None:
     assert units.tolist() == expected
 
 
-def test_the_compiled_stream_draws_numpys_bits() -> None:
-    compiled = numba.njit(counter_uniforms)
-    for seed in (0, 1, 7, 2**40 + 3):
-        np.testing.assert_array_equal(
-            compiled(seed, 13, 50, LOWER, UPPER), counter_uniforms(seed, 13, 50, LOWER, UPPER)
-        )
+@numba.njit(cache=True)
+def _compiled_samples(seed: int, first: int, count: int, lower: Any, upper: Any) -> Any:
+    out = np.empty((count, lower.shape[0]))
+    for k in range(count):
+        sample_into(seed, first + k, lower, upper, out[k])
+    return out
+
+
+def test_the_compiled_loop_draws_numpys_bits() -> None:
+    for seed in (0, 1, 7, 2**40 + 3, 2**63 - 1):
+        for first in (0, 13, 2**33):
+            expected = counter_uniforms(seed, first, 50, LOWER, UPPER)
+            np.testing.assert_array_equal(_compiled_samples(seed, first, 50, LOWER, UPPER), expected)
 
 
 def test_samples_one_at_a_time_are_the_blocks_values() -> None:

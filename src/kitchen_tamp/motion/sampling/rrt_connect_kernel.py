@@ -33,9 +33,7 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     validity_scratch,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import NO_PARENT
-from kitchen_tamp.motion.sampling.counter_samples import counter_uniforms
-
-_sample = numba.njit(cache=True)(counter_uniforms)
+from kitchen_tamp.motion.sampling.counter_samples import GAMMA, MIX_FIRST, MIX_SECOND, UNIT
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -192,6 +190,19 @@ def _connect(
     return _add(tree, target, index, nodes, parents, squared_norms, counters), True
 
 
+@numba.njit(cache=True, forceinline=True)
+def sample_into(seed: int, index: int, lower: FloatArray, upper: FloatArray, out: FloatArray) -> None:
+    """Sample ``index`` of the stream of ``seed`` (`counter_samples.counter_uniforms`' row) into
+    ``out``, one SplitMix64 output a joint, without arrays (``uint64`` arithmetic wraps as numpy's)."""
+    dimension = lower.shape[0]
+    for j in range(dimension):
+        bits = np.uint64(seed) + np.uint64(index * dimension + j + 1) * GAMMA
+        bits = (bits ^ (bits >> np.uint64(30))) * MIX_FIRST
+        bits = (bits ^ (bits >> np.uint64(27))) * MIX_SECOND
+        bits = bits ^ (bits >> np.uint64(31))
+        out[j] = lower[j] + (upper[j] - lower[j]) * (float(bits >> np.uint64(11)) * UNIT)
+
+
 @numba.njit(cache=True)
 def rrt_connect_iterations(
     seed: int,
@@ -223,7 +234,8 @@ def rrt_connect_iterations(
         if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + counters[COUNTER_ROOM] > capacity:
             break
         used += 1
-        target = _sample(seed, counters[COUNTER_ITERATIONS], 1, lower, upper)[0]
+        target = np.empty(lower.shape[0])
+        sample_into(seed, counters[COUNTER_ITERATIONS], lower, upper, target)
         counters[COUNTER_ITERATIONS] += 1
         growing = counters[COUNTER_GROWING]
         other = 1 - growing

@@ -115,38 +115,42 @@ def world_point(pose: FloatArray, local: FloatArray, out: FloatArray) -> None:
 
 # sin(r) = r + r z (s1 + z (s2 + ...)) and cos(r) = 1 - z/2 + z^2 (c1 + z (c2 + ...)), z = r^2: the
 # Taylor series to degree 15 and 16. On [-pi/4, pi/4] the first terms left out are below 5e-17.
-_SIN = tuple((-1.0) ** k / math.factorial(2 * k + 1) for k in range(1, 8))
-_COS = tuple((-1.0) ** k / math.factorial(2 * k) for k in range(2, 9))
+SINE_TERMS = tuple((-1.0) ** k / math.factorial(2 * k + 1) for k in range(1, 8))
+COSINE_TERMS = tuple((-1.0) ** k / math.factorial(2 * k) for k in range(2, 9))
 _PI = Fraction("3.14159265358979323846264338327950288419716939937510")
-_HALF_PI_HIGH = float(round(_PI / 2 * 2**32)) / 2**32
-"""pi/2 to 33 bits, so that ``turns * _HALF_PI_HIGH`` is exact for the joint ranges' few turns;
-``_HALF_PI_LOW`` is the rest."""
-_HALF_PI_LOW = float(_PI / 2 - Fraction(_HALF_PI_HIGH))
-_TWO_OVER_PI = float(2 / _PI)
+HALF_PI_HIGH = float(round(_PI / 2 * 2**32)) / 2**32
+"""pi/2 to 33 bits, so that ``turns * HALF_PI_HIGH`` is exact for the joint ranges' few turns;
+``HALF_PI_LOW`` is the rest."""
+HALF_PI_LOW = float(_PI / 2 - Fraction(HALF_PI_HIGH))
+TWO_OVER_PI = float(2 / _PI)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def sine_cosine(x: float) -> tuple[float, float]:
+    """(sin x, cos x) to within an ulp of libm's, branch-free so that a loop of them runs in SIMD
+    lanes instead of a libm call each (which cost more than the rest of the kinematics). Reduced
+    by the nearest multiple of pi/2 (in two parts), then the Taylor polynomials above; within an
+    ulp of numpy's over [-3.8, 3.8] (tested). Compiled with fastmath like its callers: LLVM inlines
+    a function only into one with the same flags."""
+    s1, s2, s3, s4, s5, s6, s7 = SINE_TERMS
+    c1, c2, c3, c4, c5, c6, c7 = COSINE_TERMS
+    turns = np.floor(x * TWO_OVER_PI + 0.5)
+    r = (x - turns * HALF_PI_HIGH) - turns * HALF_PI_LOW
+    z = r * r
+    sine = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * (s6 + z * s7))))))
+    cosine = 1.0 - 0.5 * z + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * (c6 + z * c7))))))
+    quadrant = np.int64(turns) & 3
+    swapped = (quadrant & 1) == 1
+    a = cosine if swapped else sine
+    b = sine if swapped else cosine
+    return (-a if quadrant >= 2 else a), (-b if (quadrant == 1 or quadrant == 2) else b)
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def joint_sines_cosines(qs: FloatArray, m: int, sines: FloatArray, cosines: FloatArray) -> None:
-    """sin and cos of every joint value of ``qs[m]`` to within an ulp of libm's, branch-free so that
-    all joints take one pass of SIMD lanes instead of a libm call each (which cost more than the
-    rest of the kinematics). Reduced by the nearest multiple of pi/2 (in two parts), then the
-    Taylor polynomials above; within an ulp of numpy's over [-3.8, 3.8] (tested). Compiled with
-    fastmath like its callers: LLVM inlines a function only into one with the same flags."""
-    s1, s2, s3, s4, s5, s6, s7 = _SIN
-    c1, c2, c3, c4, c5, c6, c7 = _COS
+    """`sine_cosine` of every joint value of ``qs[m]``, in one pass of SIMD lanes."""
     for j in range(qs.shape[1]):
-        x = qs[m, j]
-        turns = np.floor(x * _TWO_OVER_PI + 0.5)
-        r = (x - turns * _HALF_PI_HIGH) - turns * _HALF_PI_LOW
-        z = r * r
-        sine = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * (s6 + z * s7))))))
-        cosine = 1.0 - 0.5 * z + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * (c6 + z * c7))))))
-        quadrant = np.int64(turns) & 3
-        swapped = (quadrant & 1) == 1
-        a = cosine if swapped else sine
-        b = sine if swapped else cosine
-        sines[j] = -a if quadrant >= 2 else a
-        cosines[j] = -b if (quadrant == 1 or quadrant == 2) else b
+        sines[j], cosines[j] = sine_cosine(qs[m, j])
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)

@@ -20,6 +20,8 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import first_invalid_in_lanes, lane_scratch
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     ValidityArrays,
@@ -76,13 +78,17 @@ def _first_invalid_in_batches(
     first configuration)."""
     count, dimension = shares.shape[0], q0.shape[0]
     qs = np.empty((count, dimension))
+    lanes = lane_scratch(arrays, dimension)
     start, size = 0, FIRST_BATCH_SIZE
     while start < count:
         stop = min(count, start + size)
         for i in range(start, stop):
             for j in range(dimension):
                 qs[i, j] = q0[j] + shares[i] * (q1[j] - q0[j])
-        first = _first_invalid(qs[start:stop], arrays, margin, scratch)
+        if stop - start >= LANES:
+            first = first_invalid_in_lanes(qs[start:stop], arrays, margin, scratch, lanes)
+        else:
+            first = _first_invalid(qs[start:stop], arrays, margin, scratch)
         if first >= 0:
             return start + first, stop
         start, size = stop, size * 2

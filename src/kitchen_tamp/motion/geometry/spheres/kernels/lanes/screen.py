@@ -1,0 +1,322 @@
+"""Eight configurations at once: a screen in SIMD lanes that clears configurations the validity
+kernel would accept, so that the kernel checks only the rest.
+
+A free configuration's check in `validity.valid_rows` goes through the same steps for nearly every
+configuration: the kinematics, each group's bound read from the obstacles' distance grid, each self
+pair's table cell and bounds, and now and then a group's coarse spheres near an obstacle or near
+another group. Here those steps run for ``LANES`` configurations side by side in one `simd.Doubles8`
+each (the kinematics in `kinematics`); a lane is cleared when every pair the kernel checks is
+cleared by one of its own tests, each kept ``SLACK`` to spare for the two computations' rounding:
+
+- every joint within its limits (the kernel's tolerance);
+- each group of the arm and every obstacle it is checked against: the group's bound far from the
+  obstacle by the distance grid, by the obstacle's axis-aligned bounds or by its exact gap, or else
+  each of the group's coarse spheres far from the obstacle by its exact gap;
+- each self pair: none its table proves colliding, and each proved clear by its table, by its
+  groups' bounds, by no coarse sphere of one group near the other's bound, or by no two coarse
+  spheres near each other (each proof where the kernel uses it: the tables by their margin).
+
+The kernel opens its fine spheres only for a pair whose coarse spheres come near, and rejects a
+configuration only then or by a table or a limit, so a cleared configuration is one it accepts. A
+configuration not cleared is checked by the kernel, which decides: the verdicts, and so every plan
+and count, are the kernel's (``tests/motion/test_lanes.py``; a screen clearing 1 mm too close fails
+them).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import SHAPE_CYLINDER, SHAPE_SPHERE
+from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid_frame import GRID_UNIT
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import (
+    ALL_LANES,
+    LANES,
+    lane_link_poses,
+    lane_point,
+    within_limits,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.simd import (
+    abs8,
+    at_least8,
+    floor8,
+    gather8,
+    less8,
+    load8,
+    max8,
+    min8,
+    splat8,
+    sqrt8,
+    store8,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays, ValidityScratch
+
+FloatArray = npt.NDArray[np.float64]
+
+SLACK = 1e-9
+"""Metres every clearing test keeps to spare, far above either computation's rounding."""
+
+LaneScratch = tuple[Any, ...]
+"""What the screen works in (`lane_scratch`): the lanes' joint values, sines and cosines, link
+poses and group bounds (lane innermost, `kinematics`), and the rows left to the kernel."""
+
+
+@numba.njit(cache=True)
+def lane_scratch(arrays: ValidityArrays, dimension: int) -> LaneScratch:
+    """Buffers for `first_invalid_in_lanes` on ``arrays``' model, configurations of ``dimension``."""
+    links, groups = arrays.parents.shape[0], arrays.group_radii.shape[0]
+    return (
+        np.empty(dimension * LANES),
+        np.empty(dimension * LANES),
+        np.empty(dimension * LANES),
+        np.empty(links * 12 * LANES),
+        np.empty(groups * 3 * LANES),
+        np.empty((LANES, dimension)),
+        np.empty(LANES, dtype=np.int64),
+    )
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _grid_clears(x: Any, y: Any, z: Any, arrays: ValidityArrays, reach: float) -> int:
+    """The lanes where the distance grid (`distance_grid.grid_clearance`) puts the point (x, y, z)
+    at least ``reach`` from every obstacle."""
+    frame, shape = arrays.grid_frame, arrays.grid_shape
+    scale, size_x, size_y, size_z = 1.0 / frame[3], float(shape[0]), float(shape[1]), float(shape[2])
+    i, j, k = floor8((x - frame[0]) * scale), floor8((y - frame[1]) * scale), floor8((z - frame[2]) * scale)
+    inside = at_least8(i, 0.0) & at_least8(j, 0.0) & at_least8(k, 0.0)
+    inside &= less8(i, size_x) & less8(j, size_y) & less8(k, size_z)
+    i, j = min8(max8(i, 0.0), size_x - 1.0), min8(max8(j, 0.0), size_y - 1.0)
+    k = min8(max8(k, 0.0), size_z - 1.0)
+    cells = gather8(arrays.grid_cells, (i * size_y + j) * size_z + k)
+    cleared: int = inside & at_least8(cells * GRID_UNIT, reach)
+    if frame[4] >= reach:
+        cleared |= ALL_LANES & ~inside
+    return cleared
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _obstacle_gap(x: Any, y: Any, z: Any, arrays: ValidityArrays, b: int) -> Any:
+    """`primitives.box_gap_at` in every lane: the signed distance from the points to obstacle ``b``
+    (a box's or a cylinder's as the length of the outside excess plus the largest excess when
+    none is outside, the kernel's two cases in one expression)."""
+    centers, halves, rotations = arrays.box_centers, arrays.box_halves, arrays.box_rotations
+    dx, dy, dz = x - centers[b, 0], y - centers[b, 1], z - centers[b, 2]
+    kind = arrays.box_kinds[b]
+    if kind == SHAPE_SPHERE:
+        return sqrt8(dx * dx + dy * dy + dz * dz) - halves[b, 0]
+    lx = dx * rotations[b, 0, 0] + dy * rotations[b, 1, 0] + dz * rotations[b, 2, 0]
+    ly = dx * rotations[b, 0, 1] + dy * rotations[b, 1, 1] + dz * rotations[b, 2, 1]
+    lz = dx * rotations[b, 0, 2] + dy * rotations[b, 1, 2] + dz * rotations[b, 2, 2]
+    if kind == SHAPE_CYLINDER:
+        radial, axial = sqrt8(lx * lx + ly * ly) - halves[b, 0], abs8(lz) - halves[b, 2]
+        out_radial, out_axial = max8(radial, 0.0), max8(axial, 0.0)
+        return sqrt8(out_radial * out_radial + out_axial * out_axial) + min8(max8(radial, axial), 0.0)
+    ex, ey, ez = abs8(lx) - halves[b, 0], abs8(ly) - halves[b, 1], abs8(lz) - halves[b, 2]
+    ox, oy, oz = max8(ex, 0.0), max8(ey, 0.0), max8(ez, 0.0)
+    return sqrt8(ox * ox + oy * oy + oz * oz) + min8(max8(max8(ex, ey), ez), 0.0)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _spheres_clear_obstacle(
+    g: int, b: int, lanes: int, arrays: ValidityArrays, margin: float, poses: FloatArray
+) -> int:
+    """Of ``lanes``, those where each of group ``g``'s coarse spheres is at least its radius and the
+    margin from obstacle ``b``."""
+    local, radii, row = arrays.coarse_local, arrays.sphere_radii, arrays.group_links[g] * 12 * LANES
+    for s in range(arrays.group_starts[g], arrays.group_stops[g]):
+        x, y, z = local[0, s], local[1, s], local[2, s]
+        wx, wy = lane_point(poses, row, x, y, z), lane_point(poses, row + 4 * LANES, x, y, z)
+        gap = _obstacle_gap(wx, wy, lane_point(poses, row + 8 * LANES, x, y, z), arrays, b)
+        lanes &= at_least8(gap, radii[s] + margin + SLACK)
+        if lanes == 0:
+            break
+    return lanes
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _group_clears_obstacles(
+    g: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+) -> int:
+    """Of ``lanes``, those where group ``g`` is cleared of every obstacle it is checked against:
+    the obstacle's bounds or exact gap far from the group's bound, or else each coarse sphere far."""
+    bound = g * 3 * LANES
+    x, y = load8(scratch[4], bound), load8(scratch[4], bound + LANES)
+    z = load8(scratch[4], bound + 2 * LANES)
+    reach, boxes = arrays.group_radii[g] + margin + SLACK, arrays.box_kinds.shape[0]
+    for b in range(boxes):
+        if arrays.unchecked[g * boxes + b] > 0.0:
+            continue
+        ex = max8(max8(arrays.low_x[b] - x, x - arrays.high_x[b]), 0.0)
+        ey = max8(max8(arrays.low_y[b] - y, y - arrays.high_y[b]), 0.0)
+        ez = max8(max8(arrays.low_z[b] - z, z - arrays.high_z[b]), 0.0)
+        near = lanes & less8(ex * ex + ey * ey + ez * ez, reach * reach)
+        if near:
+            near &= less8(_obstacle_gap(x, y, z, arrays, b), reach)
+        if near:
+            lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, scratch[3])
+            if lanes == 0:
+                break
+    return lanes
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _obstacles_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+    """Of the lanes ``cleared``, those where every group is cleared of every obstacle; each group's
+    bound placed in ``scratch[4]`` on the way."""
+    poses, group_world = scratch[3], scratch[4]
+    links, centers, radii = arrays.group_links, arrays.group_centers, arrays.group_radii
+    for g in range(radii.shape[0]):
+        row, bound = links[g] * 12 * LANES, g * 3 * LANES
+        cx, cy, cz = centers[g, 0], centers[g, 1], centers[g, 2]
+        for k in range(3):
+            store8(group_world, bound + k * LANES, lane_point(poses, row + 4 * k * LANES, cx, cy, cz))
+        reach = radii[g] + margin
+        if reach <= 0.0 or cleared == 0:
+            continue
+        x, y = load8(group_world, bound), load8(group_world, bound + LANES)
+        doubtful = cleared & ~_grid_clears(x, y, load8(group_world, bound + 2 * LANES), arrays, reach + SLACK)
+        if doubtful:
+            cleared &= ~doubtful | _group_clears_obstacles(g, doubtful, arrays, margin, scratch)
+    return cleared
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _table_states(values: FloatArray, t: int, arrays: ValidityArrays) -> Any:
+    """Each lane's cell of pair table ``t`` (as `validity._table_cell` finds it), read."""
+    lows, steps, counts = arrays.table_lows, arrays.table_steps, arrays.table_counts
+    index = splat8(0.0)
+    for axis in range(2):
+        value = load8(values, arrays.table_variables[t, axis] * LANES)
+        cell = min8(max8(floor8((value - lows[t, axis]) / steps[t, axis]), 0.0), float(counts[t, axis] - 1))
+        index = index * float(counts[t, axis]) + cell
+    return gather8(arrays.table_cells, index + float(arrays.table_offsets[t]))
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _spheres_near_bound(
+    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+) -> int:
+    """Of ``lanes``, those where some coarse sphere of group ``g`` comes near group ``h``'s bound."""
+    local, radii, poses, group_world = arrays.coarse_local, arrays.sphere_radii, scratch[3], scratch[4]
+    row, bound = arrays.group_links[g] * 12 * LANES, h * 3 * LANES
+    bx, by = load8(group_world, bound), load8(group_world, bound + LANES)
+    bz = load8(group_world, bound + 2 * LANES)
+    near = 0
+    for s in range(arrays.group_starts[g], arrays.group_stops[g]):
+        x, y, z = local[0, s], local[1, s], local[2, s]
+        dx = lane_point(poses, row, x, y, z) - bx
+        dy = lane_point(poses, row + 4 * LANES, x, y, z) - by
+        dz = lane_point(poses, row + 8 * LANES, x, y, z) - bz
+        reach = radii[s] + arrays.group_radii[h] + margin + SLACK
+        near |= lanes & less8(dx * dx + dy * dy + dz * dz, reach * reach)
+        if near == lanes:
+            break
+    return near
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _coarse_pair_clear(
+    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+) -> int:
+    """Of ``lanes``, those where the kernel's coarse level clears the self pair (g, h): no coarse
+    sphere of one group near the other's bound, or no two of their coarse spheres near."""
+    near = _spheres_near_bound(g, h, lanes, arrays, margin, scratch)
+    if near:
+        near = _spheres_near_bound(h, g, near, arrays, margin, scratch)
+    local, radii, links, poses = arrays.coarse_local, arrays.sphere_radii, arrays.group_links, scratch[3]
+    g_row, h_row = links[g] * 12 * LANES, links[h] * 12 * LANES
+    apart = near
+    for s in range(arrays.group_starts[g], arrays.group_stops[g]):
+        if apart == 0:
+            break
+        x, y, z = local[0, s], local[1, s], local[2, s]
+        sx, sy = lane_point(poses, g_row, x, y, z), lane_point(poses, g_row + 4 * LANES, x, y, z)
+        sz = lane_point(poses, g_row + 8 * LANES, x, y, z)
+        for u in range(arrays.group_starts[h], arrays.group_stops[h]):
+            x, y, z = local[0, u], local[1, u], local[2, u]
+            dx = sx - lane_point(poses, h_row, x, y, z)
+            dy = sy - lane_point(poses, h_row + 4 * LANES, x, y, z)
+            dz = sz - lane_point(poses, h_row + 8 * LANES, x, y, z)
+            reach = radii[s] + radii[u] + margin + SLACK
+            if reach > 0.0:
+                apart &= at_least8(dx * dx + dy * dy + dz * dz, reach * reach)
+    return lanes & (~near | apart)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+    """Of the lanes ``cleared``, those where no self pair is proved colliding by its table and each
+    is proved clear by its table, its groups' bounds or their coarse spheres."""
+    values, group_world = scratch[0], scratch[4]
+    pairs, radii = arrays.group_pairs, arrays.group_radii
+    clear_usable, colliding_usable = margin <= arrays.table_margin, margin >= arrays.table_margin
+    for k in range(pairs.shape[0]):
+        if cleared == 0:
+            break
+        g, h, t = pairs[k, 0], pairs[k, 1], pairs[k, 2]
+        reach = radii[g] + radii[h] + margin + SLACK
+        proved, colliding = ALL_LANES, 0
+        if reach > SLACK:
+            dx = load8(group_world, g * 3 * LANES) - load8(group_world, h * 3 * LANES)
+            dy = load8(group_world, (g * 3 + 1) * LANES) - load8(group_world, (h * 3 + 1) * LANES)
+            dz = load8(group_world, (g * 3 + 2) * LANES) - load8(group_world, (h * 3 + 2) * LANES)
+            proved = at_least8(dx * dx + dy * dy + dz * dz, reach * reach)
+        if t >= 0:
+            states = _table_states(values, t, arrays)
+            if clear_usable:
+                proved |= at_least8(states, 0.5)
+            if colliding_usable:
+                colliding = less8(states, -0.5)
+        doubtful = cleared & ~proved & ~colliding
+        if doubtful:
+            proved |= _coarse_pair_clear(g, h, doubtful, arrays, margin, scratch)
+        cleared &= proved & ~colliding
+    return cleared
+
+
+@numba.njit(cache=True, fastmath=True)
+def lanes_cleared(
+    qs: FloatArray, first: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+) -> int:
+    """Screen rows ``first`` .. ``first + LANES`` of ``qs`` (past its end, the lanes repeat its last
+    row): bit ``k`` set when row ``first + k`` is cleared, a configuration the kernel accepts."""
+    values = scratch[0]
+    rows = min(LANES, qs.shape[0] - first)
+    for lane in range(LANES):
+        row = first + min(lane, rows - 1)
+        for j in range(qs.shape[1]):
+            values[j * LANES + lane] = qs[row, j]
+    cleared = within_limits(values, arrays.lower, arrays.upper)
+    lane_link_poses(arrays, scratch)
+    cleared = _obstacles_clear(arrays, margin, scratch, cleared)
+    return int(_self_pairs_clear(arrays, margin, scratch, cleared) & ((1 << rows) - 1))
+
+
+@numba.njit(cache=True)
+def first_invalid_in_lanes(
+    qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch, lanes: LaneScratch
+) -> int:
+    """The first row of ``qs`` the validity kernel rejects, or -1: ``LANES`` rows at a time screened
+    (`lanes_cleared`), the rows not cleared checked by `valid_rows` (working in ``scratch``)."""
+    left, left_rows = lanes[5], lanes[6]
+    for first in range(0, qs.shape[0], LANES):
+        cleared = lanes_cleared(qs, first, arrays, margin, lanes)
+        count = 0
+        for lane in range(min(LANES, qs.shape[0] - first)):
+            if not cleared >> lane & 1:
+                for j in range(qs.shape[1]):
+                    left[count, j] = qs[first + lane, j]
+                left_rows[count] = first + lane
+                count += 1
+        if count == 0:
+            continue
+        valid = valid_rows(left[:count], arrays, margin, True, scratch)
+        for i in range(count):
+            if not valid[i]:
+                return int(left_rows[i])
+    return -1

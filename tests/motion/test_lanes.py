@@ -1,0 +1,150 @@
+"""The screen in SIMD lanes in front of the validity kernel: eight doubles as one value do the
+arithmetic numpy does, and a configuration the screen clears is one the kernel accepts, so the
+first invalid row of a batch is the kernel's."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import numba
+import numpy as np
+import pytest
+
+from kitchen_tamp.motion.geometry.primitive_scene import PrimitiveObstacle, arm_among_obstacles
+from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import (
+    first_invalid_in_lanes,
+    lane_scratch,
+    lanes_cleared,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.simd import (
+    abs8,
+    at_least8,
+    floor8,
+    gather8,
+    less8,
+    load8,
+    max8,
+    min8,
+    sqrt8,
+    store8,
+)
+from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_scratch
+from kitchen_tamp.motion.geometry.urdf import rpy_matrix
+from kitchen_tamp.motion.motion_bench_maker import mbm_panda
+from kitchen_tamp.world import panda_urdf_path
+
+
+@numba.njit(cache=True)
+def _arithmetic(a: Any, b: Any, cells: Any, out: Any) -> tuple[int, int]:
+    x, y = load8(a, 0), load8(b, 0)
+    store8(out, 0, (x + y) * 2.0 - x / y)
+    store8(out, 8, -x * y + 1.0)
+    store8(out, 16, floor8(x) + sqrt8(abs8(y)))
+    store8(out, 24, min8(x, y) - max8(x, 0.5))
+    store8(out, 32, gather8(cells, floor8(abs8(x) * 3.0)))
+    return less8(x, y), at_least8(x, 0.0)
+
+
+def test_eight_doubles_do_numpys_arithmetic() -> None:
+    rng = np.random.default_rng(3)
+    a, b = rng.uniform(-2.0, 2.0, 8), rng.uniform(0.5, 3.0, 8)
+    cells = rng.integers(0, 255, 8, dtype=np.uint8)
+    out = np.empty(40)
+    below, nonnegative = _arithmetic(a, b, cells, out)
+    np.testing.assert_allclose(out[:8], (a + b) * 2.0 - a / b, rtol=1e-15)
+    np.testing.assert_allclose(out[8:16], -a * b + 1.0, rtol=1e-15)
+    np.testing.assert_allclose(out[16:24], np.floor(a) + np.sqrt(np.abs(b)), rtol=1e-15)
+    np.testing.assert_allclose(out[24:32], np.minimum(a, b) - np.maximum(a, 0.5), rtol=1e-15)
+    assert np.array_equal(out[32:], cells[np.floor(np.abs(a) * 3.0).astype(int)])
+    assert below == sum(1 << k for k in range(8) if a[k] < b[k])
+    assert nonnegative == sum(1 << k for k in range(8) if a[k] >= 0.0)
+
+
+def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> np.ndarray:
+    pose = np.eye(4)
+    pose[:3, :3] = rpy_matrix(np.array(rpy))
+    pose[:3, 3] = xyz
+    return pose
+
+
+OBSTACLES = (
+    PrimitiveObstacle("table", "box", np.array([0.6, 0.9, 0.04]), _pose((0.5, 0.0, 0.1), (0.0, 0.0, 0.2))),
+    PrimitiveObstacle("board", "box", np.array([0.25, 0.02, 0.3]), _pose((0.35, 0.35, 0.5), (0.4, 0.3, 0.8))),
+    PrimitiveObstacle("can", "cylinder", np.array([0.05, 0.2]), _pose((0.45, -0.35, 0.3), (0.9, 0.0, 0.3))),
+    PrimitiveObstacle("ball", "sphere", np.array([0.07]), _pose((0.25, -0.45, 0.65), (0.0, 0.0, 0.0))),
+)
+
+
+@pytest.fixture(scope="module")
+def spheres(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SphereCollisionChecker]:
+    scene = arm_among_obstacles(mbm_panda(panda_urdf_path(), ()), OBSTACLES, tmp_path_factory.mktemp("urdf"))
+    yield SphereCollisionChecker(scene)
+
+
+@numba.njit(cache=True)
+def _screened(qs: Any, arrays: Any, margin: float) -> Any:
+    """Per row: whether the screen clears it."""
+    lanes = lane_scratch(arrays, qs.shape[1])
+    cleared = np.zeros(qs.shape[0], dtype=np.bool_)
+    for first in range(0, qs.shape[0], LANES):
+        bits = lanes_cleared(qs, first, arrays, margin, lanes)
+        for lane in range(min(LANES, qs.shape[0] - first)):
+            cleared[first + lane] = bits >> lane & 1
+    return cleared
+
+
+def _along_segments(rng: np.random.Generator, lower: np.ndarray, upper: np.ndarray, count: int) -> np.ndarray:
+    """Configurations 0.01 rad apart along random 1 rad steps: neighbours, as a segment's batch."""
+    starts = rng.uniform(lower, upper, size=(count, len(lower)))
+    steps = rng.normal(size=starts.shape)
+    steps /= np.linalg.norm(steps, axis=1, keepdims=True)
+    shares = np.linspace(0.0, 1.0, 100)
+    rows = starts[:, np.newaxis, :] + shares[np.newaxis, :, np.newaxis] * steps[:, np.newaxis, :]
+    return np.ascontiguousarray(np.clip(rows.reshape(-1, len(lower)), lower, upper))
+
+
+def _cases(checker: SphereCollisionChecker, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    uniform = rng.uniform(checker.lower, checker.upper, size=(4000, 7))
+    return np.concatenate([uniform, _along_segments(rng, checker.lower, checker.upper, 300)])
+
+
+@pytest.mark.parametrize("margin_change", [0.0, 0.02, -0.005])
+def test_a_configuration_the_screen_clears_is_one_the_kernel_accepts(
+    spheres: SphereCollisionChecker, margin_change: float
+) -> None:
+    arrays, margin = spheres.compiled_validity()
+    margin += margin_change  # the pair tables used for both proofs, one, or neither
+    qs = _cases(spheres, 5)
+    valid = valid_rows(qs, arrays, margin, False, validity_scratch(arrays, 7))
+    cleared = _screened(qs, arrays, margin)
+    assert not np.any(cleared & ~valid)
+    assert 0.2 < valid.mean() < 0.95  # the obstacles are in the arm's way
+    assert cleared[valid].mean() > 0.8  # and the screen clears most free configurations
+
+
+def test_the_screen_clears_configurations_beside_the_table_of_motion_bench_maker(mbm_table: Any) -> None:
+    _, checker, _ = mbm_table
+    arrays, margin = checker.compiled_validity()
+    qs = _cases(checker, 6)
+    valid = valid_rows(qs, arrays, margin, False, validity_scratch(arrays, 7))
+    cleared = _screened(qs, arrays, margin)
+    assert not np.any(cleared & ~valid)
+    assert cleared[valid].mean() > 0.9
+
+
+def test_the_first_invalid_row_of_a_batch_is_the_kernels(spheres: SphereCollisionChecker) -> None:
+    arrays, margin = spheres.compiled_validity()
+    qs = _along_segments(np.random.default_rng(8), spheres.lower, spheres.upper, 80)
+    scratch, lanes = validity_scratch(arrays, 7), lane_scratch(arrays, 7)
+    firsts = []
+    for batch in np.split(qs, 160):  # batches of 50 rows: six lanes' worth and a partial one
+        valid = valid_rows(batch, arrays, margin, False, scratch)
+        expected = int(np.argmin(valid)) if not valid.all() else -1
+        assert first_invalid_in_lanes(np.ascontiguousarray(batch), arrays, margin, scratch, lanes) == expected
+        firsts.append(expected)
+    assert -1 in firsts and any(first > LANES for first in firsts)  # free batches and late collisions
