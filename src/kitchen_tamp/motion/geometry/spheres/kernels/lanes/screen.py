@@ -61,9 +61,24 @@ FloatArray = npt.NDArray[np.float64]
 SLACK = 1e-9
 """Metres every clearing test keeps to spare, far above either computation's rounding."""
 
+FALLBACK_LANES = 3
+"""Lanes a pair must leave in doubt before their coarse spheres are tested here: a test in lanes costs
+the same for one lane as for eight, and fewer are cheaper to leave to the kernel, which rejects a
+colliding configuration as soon as it finds it."""
+
 LaneScratch = tuple[Any, ...]
 """What the screen works in (`lane_scratch`): the lanes' joint values, sines and cosines, link
 poses and group bounds (lane innermost, `kinematics`), and the rows left to the kernel."""
+
+
+@numba.njit(cache=True, forceinline=True)
+def _count(lanes: int) -> int:
+    """How many lanes the mask holds."""
+    count = 0
+    while lanes:
+        lanes &= lanes - 1
+        count += 1
+    return count
 
 
 @numba.njit(cache=True)
@@ -78,6 +93,7 @@ def lane_scratch(arrays: ValidityArrays, dimension: int) -> LaneScratch:
         np.empty(groups * 3 * LANES),
         np.empty((LANES, dimension)),
         np.empty(LANES, dtype=np.int64),
+        np.empty(arrays.group_pairs.shape[0], dtype=np.int64),
     )
 
 
@@ -157,8 +173,10 @@ def _group_clears_obstacles(
         near = lanes & less8(ex * ex + ey * ey + ez * ez, reach * reach)
         if near:
             near &= less8(_obstacle_gap(x, y, z, arrays, b), reach)
-        if near:
+        if _count(near) >= FALLBACK_LANES:
             lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, scratch[3])
+        elif near:
+            lanes &= ~near
             if lanes == 0:
                 break
     return lanes
@@ -176,7 +194,9 @@ def _obstacles_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch
         for k in range(3):
             store8(group_world, bound + k * LANES, lane_point(poses, row + 4 * k * LANES, cx, cy, cz))
         reach = radii[g] + margin
-        if reach <= 0.0 or cleared == 0:
+        if cleared == 0:
+            break
+        if reach <= 0.0:
             continue
         x, y = load8(group_world, bound), load8(group_world, bound + LANES)
         doubtful = cleared & ~_grid_clears(x, y, load8(group_world, bound + 2 * LANES), arrays, reach + SLACK)
@@ -249,33 +269,50 @@ def _coarse_pair_clear(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
-    """Of the lanes ``cleared``, those where no self pair is proved colliding by its table and each
-    is proved clear by its table, its groups' bounds or their coarse spheres."""
-    values, group_world = scratch[0], scratch[4]
-    pairs, radii = arrays.group_pairs, arrays.group_radii
+def _tables_read(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+    """Of the lanes ``cleared``, those no pair table proves colliding; per self pair, the lanes its
+    table proves clear into ``scratch[7]`` (each proof where the kernel uses it). Read before the
+    kinematics, as the kernel reads them: a configuration a table rejects costs nothing more."""
+    values, proved = scratch[0], scratch[7]
+    pairs = arrays.group_pairs
     clear_usable, colliding_usable = margin <= arrays.table_margin, margin >= arrays.table_margin
     for k in range(pairs.shape[0]):
-        if cleared == 0:
-            break
-        g, h, t = pairs[k, 0], pairs[k, 1], pairs[k, 2]
+        proved[k] = 0
+        t = pairs[k, 2]
+        if t < 0:
+            continue
+        states = _table_states(values, t, arrays)
+        if clear_usable:
+            proved[k] = at_least8(states, 0.5)
+        if colliding_usable:
+            cleared &= ~less8(states, -0.5)
+    return cleared
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+    """Of the lanes ``cleared``, those where each self pair is proved clear by its table
+    (`_tables_read`), its groups' bounds or their coarse spheres."""
+    group_world, proved_by_table = scratch[4], scratch[7]
+    pairs, radii = arrays.group_pairs, arrays.group_radii
+    for k in range(pairs.shape[0]):
+        doubtful = cleared & ~proved_by_table[k]
+        if doubtful == 0:
+            continue
+        g, h = pairs[k, 0], pairs[k, 1]
         reach = radii[g] + radii[h] + margin + SLACK
-        proved, colliding = ALL_LANES, 0
-        if reach > SLACK:
-            dx = load8(group_world, g * 3 * LANES) - load8(group_world, h * 3 * LANES)
-            dy = load8(group_world, (g * 3 + 1) * LANES) - load8(group_world, (h * 3 + 1) * LANES)
-            dz = load8(group_world, (g * 3 + 2) * LANES) - load8(group_world, (h * 3 + 2) * LANES)
-            proved = at_least8(dx * dx + dy * dy + dz * dz, reach * reach)
-        if t >= 0:
-            states = _table_states(values, t, arrays)
-            if clear_usable:
-                proved |= at_least8(states, 0.5)
-            if colliding_usable:
-                colliding = less8(states, -0.5)
-        doubtful = cleared & ~proved & ~colliding
-        if doubtful:
-            proved |= _coarse_pair_clear(g, h, doubtful, arrays, margin, scratch)
-        cleared &= proved & ~colliding
+        if reach <= SLACK:
+            continue  # the kernel checks no pair its margin makes empty
+        dx = load8(group_world, g * 3 * LANES) - load8(group_world, h * 3 * LANES)
+        dy = load8(group_world, (g * 3 + 1) * LANES) - load8(group_world, (h * 3 + 1) * LANES)
+        dz = load8(group_world, (g * 3 + 2) * LANES) - load8(group_world, (h * 3 + 2) * LANES)
+        doubtful &= less8(dx * dx + dy * dy + dz * dz, reach * reach)
+        if _count(doubtful) >= FALLBACK_LANES:
+            cleared &= ~doubtful | _coarse_pair_clear(g, h, doubtful, arrays, margin, scratch)
+        elif doubtful:
+            cleared &= ~doubtful
+            if cleared == 0:
+                break
     return cleared
 
 
@@ -291,7 +328,9 @@ def lanes_cleared(
         row = first + min(lane, rows - 1)
         for j in range(qs.shape[1]):
             values[j * LANES + lane] = qs[row, j]
-    cleared = within_limits(values, arrays.lower, arrays.upper)
+    cleared = _tables_read(arrays, margin, scratch, within_limits(values, arrays.lower, arrays.upper))
+    if cleared == 0:
+        return 0
     lane_link_poses(arrays, scratch)
     cleared = _obstacles_clear(arrays, margin, scratch, cleared)
     return int(_self_pairs_clear(arrays, margin, scratch, cleared) & ((1 << rows) - 1))
