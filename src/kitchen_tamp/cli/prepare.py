@@ -57,6 +57,7 @@ def _compile_kernels() -> None:
     checker.is_valid_without_padding(home)
     SphereClearance(checker.model, 0.005, ends=home)(home)
     _compile_rrt_connect_loop(checker, home[0])
+    _compile_segments(checker, home[0])
     _compile_shortcut_steps(checker, home[0])
     _compile_sphere_kernels_ahead_of_time(checker, home)
     _compile_planning_kernels(task)
@@ -99,6 +100,16 @@ def _compile_rrt_connect_loop(checker: SphereCollisionChecker, home: npt.NDArray
     space = ConfigurationSpace(checker.lower, checker.upper)
     query = LoopQuery(space, 0, RrtConnectHyperparameters(max_iterations=1), math.inf)
     compile_loop_kernels(home, checker.compiled_validity(), query)
+
+
+def _compile_segments(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
+    """The sphere model's segment checks one call at a time (`CompiledSegments`), as the Python loop
+    calls them (a query whose end the spheres wrongly reject plans there): once each, on a segment
+    from ``home`` long enough for a batch in SIMD lanes. Compiled on first use, they took a query
+    five CPU seconds."""
+    away = home + np.eye(len(home))[0] * 0.5
+    checker.segment_checked(home, away, 50, True, True)
+    checker.free_prefix_checked(home, away, 0.5, 0.01)
 
 
 def _compile_shortcut_steps(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:
