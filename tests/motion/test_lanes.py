@@ -13,7 +13,8 @@ import pytest
 
 from kitchen_tamp.motion.geometry.primitive_scene import PrimitiveObstacle, arm_among_obstacles
 from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
-from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES
+from kitchen_tamp.motion.geometry.spheres.kernels.codes import FIXED, PRISMATIC, REVOLUTE, REVOLUTE_Z, SKIPPED
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES, lane_link_poses
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import (
     first_invalid_in_lanes,
     lane_scratch,
@@ -31,11 +32,17 @@ from kitchen_tamp.motion.geometry.spheres.kernels.lanes.simd import (
     sqrt8,
     store8,
 )
+from kitchen_tamp.motion.geometry.spheres.kernels.primitives import folded_link_poses
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_scratch
+from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import origin_axes
 from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
+
+LANE_POSES: Any = lane_link_poses
+FOLDED_POSES: Any = folded_link_poses
+"""The compiled kernels, untyped for mypy (numba's dispatcher stubs take no argument list)."""
 
 
 @numba.njit(cache=True)
@@ -148,3 +155,41 @@ def test_the_first_invalid_row_of_a_batch_is_the_kernels(spheres: SphereCollisio
         assert first_invalid_in_lanes(np.ascontiguousarray(batch), arrays, margin, scratch, lanes) == expected
         firsts.append(expected)
     assert -1 in firsts and any(first > LANES for first in firsts)  # free batches and late collisions
+
+
+def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' rotation (4x4) about a unit axis."""
+    x, y, z = axis / np.linalg.norm(axis)
+    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    pose = np.eye(4)
+    pose[:3, :3] += np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
+    return pose
+
+
+def test_the_lanes_place_every_kind_of_link_where_the_kernel_does() -> None:
+    """A chain of every joint kind the folded layout holds (fixed, revolute about a tilted axis,
+    about z behind arbitrary and quarter-turn origins, prismatic, a skipped link): eight
+    configurations' poses in lanes are the kernel's, one configuration at a time."""
+    rng = np.random.default_rng(35)
+    kinds = np.array([FIXED, REVOLUTE, REVOLUTE_Z, SKIPPED, PRISMATIC, REVOLUTE_Z, FIXED], dtype=np.int64)
+    parents = np.array([-1, 0, 1, 2, 2, 4, 5], dtype=np.int64)
+    variables = np.array([-1, 0, 1, -1, 2, 3, -1], dtype=np.int64)
+    axes = np.zeros((len(kinds), 3))
+    axes[1], axes[2], axes[4], axes[5] = [0.6, 0.0, 0.8], [0.0, 0.0, 1.0], [0.0, 0.6, -0.8], [0.0, 0.0, 1.0]
+    origins = np.stack([_rotation(rng.normal(size=3), rng.uniform(-3, 3)) for _ in range(len(kinds))])
+    origins[5, :3, :3] = [[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]  # quarter turns
+    origins[:, :3, 3] = rng.normal(size=(len(kinds), 3))
+    chain = (origins[0].copy(), parents, origins, kinds, axes, variables, origin_axes(origins, kinds))
+    assert chain[6][5, 0] != 0 and not chain[6][2].any()  # both paths of a joint about z
+    qs = rng.uniform(-3.5, 3.5, size=(LANES, 4))
+    lanes = (np.ascontiguousarray(qs.T).reshape(-1), np.empty(4 * LANES), np.empty(4 * LANES))
+    lanes += (np.full(len(kinds) * 12 * LANES, np.nan),)
+    LANE_POSES(chain, lanes)
+    in_lanes = lanes[3].reshape(len(kinds), 3, 4, LANES)
+    poses, frame = np.full((len(kinds), 3, 4), np.nan), np.empty((3, 4))
+    sines, cosines = np.empty(4), np.empty(4)
+    for m in range(LANES):
+        FOLDED_POSES(qs, m, *chain, poses, frame, sines, cosines)
+        kept = kinds != SKIPPED
+        np.testing.assert_allclose(in_lanes[kept, :, :, m], poses[kept], rtol=0.0, atol=1e-13)
+    assert np.all(np.isnan(in_lanes[3]))

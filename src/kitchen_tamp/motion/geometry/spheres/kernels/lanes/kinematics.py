@@ -30,7 +30,6 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
     SINE_TERMS,
     TWO_OVER_PI,
 )
-from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import ValidityArrays
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -40,6 +39,10 @@ ALL_LANES = (1 << LANES) - 1
 """The bit mask of every lane."""
 LIMIT_TOLERANCE = 1e-9
 """How far past a joint limit a value still counts as within it: the validity kernel's tolerance."""
+
+Chain = tuple[Any, ...]
+"""The links as `primitives.folded_link_poses` takes them: (root, parents, origins, kinds, axes,
+variables, origin_axes)."""
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -90,11 +93,11 @@ def _sines_cosines(values: FloatArray, sines: FloatArray, cosines: FloatArray) -
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _quarter_turn_z(
-    poses: FloatArray, parent: int, link: int, arrays: ValidityArrays, sines: FloatArray, cosines: FloatArray
+    poses: FloatArray, parent: int, link: int, chain: Chain, sines: FloatArray, cosines: FloatArray
 ) -> None:
     """`primitives._quarter_turn_z` in every lane: the parent's columns permuted and signed (the
     origin's rotation), turned about z, and the origin's translation."""
-    origin_axes, origins, variable = arrays.origin_axes, arrays.origins, arrays.variables[link]
+    origin_axes, origins, variable = chain[6], chain[2], chain[5][link]
     a0, a1, a2 = origin_axes[link, 0], origin_axes[link, 1], origin_axes[link, 2]
     r0, r1, r2 = abs(a0) - 1, abs(a1) - 1, abs(a2) - 1
     g0, g1, g2 = (1.0 if a0 > 0 else -1.0), (1.0 if a1 > 0 else -1.0), (1.0 if a2 > 0 else -1.0)
@@ -111,14 +114,12 @@ def _quarter_turn_z(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _moved_link(
-    poses: FloatArray, parent: int, link: int, arrays: ValidityArrays, lanes: tuple[Any, ...]
-) -> None:
+def _moved_link(poses: FloatArray, parent: int, link: int, chain: Chain, lanes: tuple[Any, ...]) -> None:
     """poses[link] = poses[parent] @ origins[link], moved by the link's joint (FIXED, REVOLUTE_Z,
     REVOLUTE or PRISMATIC about its axis), in every lane."""
     values, sines, cosines = lanes[0], lanes[1], lanes[2]
-    origins, kind, variable = arrays.origins, arrays.kinds[link], max(arrays.variables[link], 0)
-    x, y, z = arrays.axes[link, 0], arrays.axes[link, 1], arrays.axes[link, 2]
+    origins, kind, variable, axes = chain[2], chain[3][link], max(chain[5][link], 0), chain[4]
+    x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
     c, s = load8(cosines, variable * LANES), load8(sines, variable * LANES)
     value = load8(values, variable * LANES)
     for i in range(3):
@@ -146,12 +147,12 @@ def _moved_link(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def lane_link_poses(arrays: ValidityArrays, lanes: tuple[Any, ...]) -> None:
+def lane_link_poses(chain: Chain, lanes: tuple[Any, ...]) -> None:
     """Every kept link's pose (``lanes[3]``) at the lanes' configurations (``lanes[0]``), as
     `primitives.folded_link_poses` places them; the sines and cosines in ``lanes[1]`` and ``[2]``."""
     values, sines, cosines, poses = lanes[0], lanes[1], lanes[2], lanes[3]
     _sines_cosines(values, sines, cosines)
-    root, parents, kinds, origin_axes = arrays.root, arrays.parents, arrays.kinds, arrays.origin_axes
+    root, parents, kinds, origin_axes = chain[0], chain[1], chain[3], chain[6]
     for link in range(parents.shape[0]):
         kind, parent = kinds[link], parents[link]
         if kind == SKIPPED:
@@ -160,6 +161,6 @@ def lane_link_poses(arrays: ValidityArrays, lanes: tuple[Any, ...]) -> None:
             for e in range(12):
                 store8(poses, (link * 12 + e) * LANES, splat8(root[e // 4, e % 4]))
         elif kind == REVOLUTE_Z and origin_axes[link, 0] != 0:
-            _quarter_turn_z(poses, parent, link, arrays, sines, cosines)
+            _quarter_turn_z(poses, parent, link, chain, sines, cosines)
         else:
-            _moved_link(poses, parent, link, arrays, lanes)
+            _moved_link(poses, parent, link, chain, lanes)

@@ -331,7 +331,8 @@ def lanes_cleared(
     cleared = _tables_read(arrays, margin, scratch, within_limits(values, arrays.lower, arrays.upper))
     if cleared == 0:
         return 0
-    lane_link_poses(arrays, scratch)
+    links = (arrays.root, arrays.parents, arrays.origins, arrays.kinds, arrays.axes)
+    lane_link_poses((*links, arrays.variables, arrays.origin_axes), scratch)
     cleared = _obstacles_clear(arrays, margin, scratch, cleared)
     return int(_self_pairs_clear(arrays, margin, scratch, cleared) & ((1 << rows) - 1))
 
