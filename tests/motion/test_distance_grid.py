@@ -20,9 +20,9 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import (
     VALIDITY_FIELDS,
     with_derived,
 )
-from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
+from tests.motion.poses import pose
 
 CELLS: Any = distance_grid_cells
 CLEARANCE: Any = grid_clearance
@@ -31,20 +31,13 @@ VALID: Any = valid_configurations_of_fields
 """The compiled kernels, untyped for mypy (numba's dispatcher stubs take no argument list)."""
 
 
-def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> np.ndarray:
-    pose = np.eye(4)
-    pose[:3, :3] = rpy_matrix(np.array(rpy))
-    pose[:3, 3] = xyz
-    return pose
-
-
 OBSTACLES = (
-    PrimitiveObstacle("table", "box", np.array([0.5, 0.8, 0.03]), _pose((0.55, 0.0, 0.2), (0.0, 0.0, 0.3))),
+    PrimitiveObstacle("table", "box", np.array([0.5, 0.8, 0.03]), pose((0.55, 0.0, 0.2), (0.0, 0.0, 0.3))),
     PrimitiveObstacle(
-        "tilted board", "box", np.array([0.2, 0.02, 0.3]), _pose((0.3, 0.4, 0.55), (0.5, 0.2, 0.9))
+        "tilted board", "box", np.array([0.2, 0.02, 0.3]), pose((0.3, 0.4, 0.55), (0.5, 0.2, 0.9))
     ),
-    PrimitiveObstacle("can", "cylinder", np.array([0.04, 0.25]), _pose((0.45, -0.3, 0.35), (1.1, 0.0, 0.4))),
-    PrimitiveObstacle("ball", "sphere", np.array([0.08]), _pose((0.2, -0.5, 0.7), (0.0, 0.0, 0.0))),
+    PrimitiveObstacle("can", "cylinder", np.array([0.04, 0.25]), pose((0.45, -0.3, 0.35), (1.1, 0.0, 0.4))),
+    PrimitiveObstacle("ball", "sphere", np.array([0.08]), pose((0.2, -0.5, 0.7), (0.0, 0.0, 0.0))),
 )
 
 

@@ -36,9 +36,9 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import folded_link_
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validity_scratch
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import origin_axes
-from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
+from tests.motion.poses import pose, rotation
 
 LANE_POSES: Any = lane_link_poses
 FOLDED_POSES: Any = folded_link_poses
@@ -71,18 +71,11 @@ def test_eight_doubles_do_numpys_arithmetic() -> None:
     assert nonnegative == sum(1 << k for k in range(8) if a[k] >= 0.0)
 
 
-def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float]) -> np.ndarray:
-    pose = np.eye(4)
-    pose[:3, :3] = rpy_matrix(np.array(rpy))
-    pose[:3, 3] = xyz
-    return pose
-
-
 OBSTACLES = (
-    PrimitiveObstacle("table", "box", np.array([0.6, 0.9, 0.04]), _pose((0.5, 0.0, 0.1), (0.0, 0.0, 0.2))),
-    PrimitiveObstacle("board", "box", np.array([0.25, 0.02, 0.3]), _pose((0.35, 0.35, 0.5), (0.4, 0.3, 0.8))),
-    PrimitiveObstacle("can", "cylinder", np.array([0.05, 0.2]), _pose((0.45, -0.35, 0.3), (0.9, 0.0, 0.3))),
-    PrimitiveObstacle("ball", "sphere", np.array([0.07]), _pose((0.25, -0.45, 0.65), (0.0, 0.0, 0.0))),
+    PrimitiveObstacle("table", "box", np.array([0.6, 0.9, 0.04]), pose((0.5, 0.0, 0.1), (0.0, 0.0, 0.2))),
+    PrimitiveObstacle("board", "box", np.array([0.25, 0.02, 0.3]), pose((0.35, 0.35, 0.5), (0.4, 0.3, 0.8))),
+    PrimitiveObstacle("can", "cylinder", np.array([0.05, 0.2]), pose((0.45, -0.35, 0.3), (0.9, 0.0, 0.3))),
+    PrimitiveObstacle("ball", "sphere", np.array([0.07]), pose((0.25, -0.45, 0.65), (0.0, 0.0, 0.0))),
 )
 
 
@@ -157,15 +150,6 @@ def test_the_first_invalid_row_of_a_batch_is_the_kernels(spheres: SphereCollisio
     assert -1 in firsts and any(first > LANES for first in firsts)  # free batches and late collisions
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues' rotation (4x4) about a unit axis."""
-    x, y, z = axis / np.linalg.norm(axis)
-    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    pose = np.eye(4)
-    pose[:3, :3] += np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
-    return pose
-
-
 def test_the_lanes_place_every_kind_of_link_where_the_kernel_does() -> None:
     """A chain of every joint kind the folded layout holds (fixed, revolute about a tilted axis,
     about z behind arbitrary and quarter-turn origins, prismatic, a skipped link): eight
@@ -176,7 +160,7 @@ def test_the_lanes_place_every_kind_of_link_where_the_kernel_does() -> None:
     variables = np.array([-1, 0, 1, -1, 2, 3, -1], dtype=np.int64)
     axes = np.zeros((len(kinds), 3))
     axes[1], axes[2], axes[4], axes[5] = [0.6, 0.0, 0.8], [0.0, 0.0, 1.0], [0.0, 0.6, -0.8], [0.0, 0.0, 1.0]
-    origins = np.stack([_rotation(rng.normal(size=3), rng.uniform(-3, 3)) for _ in range(len(kinds))])
+    origins = np.stack([rotation(rng.normal(size=3), rng.uniform(-3, 3)) for _ in range(len(kinds))])
     origins[5, :3, :3] = [[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]  # quarter turns
     origins[:, :3, 3] = rng.normal(size=(len(kinds), 3))
     chain = (origins[0].copy(), parents, origins, kinds, axes, variables, origin_axes(origins, kinds))

@@ -27,6 +27,7 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import validit
 from kitchen_tamp.motion.geometry.urdf import rpy_matrix
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
+from tests.motion.poses import pose
 
 VALID_ROWS: Any = valid_rows
 """The compiled kernels, untyped for mypy (numba's dispatcher stubs take no argument list)."""
@@ -35,20 +36,13 @@ FREE_PREFIX_IN: Any = free_prefix_checked_in
 SELF_PAIRS = (("panda_hand", "panda_link0"), ("panda_link0", "panda_link5"), ("panda_link1", "panda_link7"))
 
 
-def _pose(xyz: tuple[float, float, float], rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> np.ndarray:
-    pose = np.eye(4)
-    pose[:3, :3] = rpy_matrix(np.array(rpy))
-    pose[:3, 3] = xyz
-    return pose
-
-
 OBSTACLES = (
-    PrimitiveObstacle("pillar", "cylinder", np.array([0.06, 0.9]), _pose((0.45, 0.0, 0.45))),
+    PrimitiveObstacle("pillar", "cylinder", np.array([0.06, 0.9]), pose((0.45, 0.0, 0.45))),
     PrimitiveObstacle(
-        "lying can", "cylinder", np.array([0.05, 0.4]), _pose((0.3, 0.35, 0.5), (1.2, 0.3, 0.4))
+        "lying can", "cylinder", np.array([0.05, 0.4]), pose((0.3, 0.35, 0.5), (1.2, 0.3, 0.4))
     ),
-    PrimitiveObstacle("ball", "sphere", np.array([0.12]), _pose((0.1, -0.45, 0.6))),
-    PrimitiveObstacle("shelf", "box", np.array([0.3, 0.6, 0.02]), _pose((0.35, -0.2, 0.25), (0.0, 0.1, 0.5))),
+    PrimitiveObstacle("ball", "sphere", np.array([0.12]), pose((0.1, -0.45, 0.6))),
+    PrimitiveObstacle("shelf", "box", np.array([0.3, 0.6, 0.02]), pose((0.35, -0.2, 0.25), (0.0, 0.1, 0.5))),
 )
 
 

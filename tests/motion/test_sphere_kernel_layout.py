@@ -20,6 +20,7 @@ from kitchen_tamp.motion.geometry.spheres.kernels.primitives import (
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import origin_axes
 from tests.motion import test_sphere_pair_tables
+from tests.motion.poses import rotation
 
 SINES_COSINES: Any = joint_sines_cosines
 FOLDED_POSES: Any = folded_link_poses
@@ -39,15 +40,6 @@ def test_sines_and_cosines_are_numpys_to_an_ulp() -> None:
     assert np.max(np.abs(cosines - np.cos(qs))) < 3e-16
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues' rotation (4x4) about a unit axis."""
-    x, y, z = axis
-    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    pose = np.eye(4)
-    pose[:3, :3] += np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
-    return pose
-
-
 def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> None:
     """A chain with a revolute joint about a tilted axis, one about z, a prismatic joint and a
     skipped link: each kept pose is its parent's times its origin times its joint's motion."""
@@ -57,7 +49,7 @@ def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> No
     variables = np.array([-1, 0, 1, -1, 2], dtype=np.int64)
     axes = np.array([[0, 0, 0], [0.6, 0.0, 0.8], [0, 0, 1], [0, 0, 0], [0.0, 0.6, -0.8]], dtype=float)
     origins = np.stack(
-        [_rotation(a / np.linalg.norm(a), rng.uniform(-3, 3)) for a in rng.normal(size=(5, 3))]
+        [rotation(a / np.linalg.norm(a), rng.uniform(-3, 3)) for a in rng.normal(size=(5, 3))]
     )
     origins[:, :3, 3] = rng.normal(size=(5, 3))
     root = origins[0].copy()
@@ -70,8 +62,8 @@ def test_every_joint_kind_of_the_folded_kinematics_is_the_matrix_product() -> No
         chain = (root, parents, origins, kinds, axes, variables, no_quarter_turns)
         FOLDED_POSES(qs, m, *chain, poses, frame, sines, cosines)
         expected = [root]
-        expected.append(expected[0] @ origins[1] @ _rotation(axes[1], qs[m, 0]))
-        expected.append(expected[1] @ origins[2] @ _rotation(axes[2], qs[m, 1]))
+        expected.append(expected[0] @ origins[1] @ rotation(axes[1], qs[m, 0]))
+        expected.append(expected[1] @ origins[2] @ rotation(axes[2], qs[m, 1]))
         slide = np.eye(4)
         slide[:3, 3] = axes[4] * qs[m, 2]
         expected.extend([expected[2], expected[2] @ origins[4] @ slide])
@@ -87,7 +79,7 @@ def test_a_joint_about_z_behind_quarter_turns_is_the_matrix_product() -> None:
     kinds = np.array([FIXED, REVOLUTE_Z], dtype=np.int64)
     parents, variables = np.array([-1, 0], dtype=np.int64), np.array([-1, 0], dtype=np.int64)
     axes = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
-    root = _rotation(np.array([0.0, 0.6, 0.8]), 0.7)
+    root = rotation(np.array([0.0, 0.6, 0.8]), 0.7)
     root[:3, 3] = [0.1, -0.2, 0.3]
     poses, frame, sines, cosines = np.empty((2, 3, 4)), np.empty((3, 4)), np.empty(1), np.empty(1)
     for permutation in itertools.permutations(range(3)):
@@ -101,7 +93,7 @@ def test_a_joint_about_z_behind_quarter_turns_is_the_matrix_product() -> None:
             for q in rng.uniform(-3.0, 3.0, size=(5, 1)):
                 FOLDED_POSES(q[None], 0, root, parents, origins, kinds, axes, variables, quarter_turns,
                              poses, frame, sines, cosines)
-                expected = root @ origins[1] @ _rotation(axes[1], q[0])
+                expected = root @ origins[1] @ rotation(axes[1], q[0])
                 assert np.allclose(poses[1], expected[:3], atol=1e-12)
 
 

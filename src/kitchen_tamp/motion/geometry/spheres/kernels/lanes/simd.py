@@ -100,18 +100,29 @@ def splat8(typingctx: Any, value: Any) -> Any:
     return doubles8(value), generate
 
 
-def _arithmetic(instruction: str) -> Any:
+def _binary(result: Any, combine: Callable[[Any, Any, Any], Any]) -> Any:
+    """An intrinsic of two operands (each a `Doubles8` or a number, broadcast) whose value, of numba
+    type ``result``, ``combine(builder, left, right)`` builds."""
+
     @_compiled
     def operation(typingctx: Any, a: Any, b: Any) -> Any:
         def generate(context: Any, builder: Any, signature: Any, arguments: Any) -> Any:
             left = _broadcast(context, builder, arguments[0], signature.args[0])
             right = _broadcast(context, builder, arguments[1], signature.args[1])
-            flags = () if instruction == "fdiv" else ("fast",)  # a quotient exact, as the kernel's
-            return getattr(builder, instruction)(left, right, flags=flags)
+            return combine(builder, left, right)
 
-        return doubles8(a, b), generate
+        return result(a, b), generate
 
     return operation
+
+
+def _arithmetic(instruction: str) -> Any:
+    flags = () if instruction == "fdiv" else ("fast",)  # a quotient exact, as the kernel's
+
+    def combine(builder: Any, left: Any, right: Any) -> Any:
+        return getattr(builder, instruction)(left, right, flags=flags)
+
+    return _binary(doubles8, combine)
 
 
 _add, _subtract, _multiply, _divide = (_arithmetic(name) for name in ("fadd", "fsub", "fmul", "fdiv"))
@@ -182,17 +193,10 @@ abs8 = _unary_llvm("llvm.fabs")
 
 
 def _binary_llvm(name: str) -> Any:
-    @_compiled
-    def operation(typingctx: Any, a: Any, b: Any) -> Any:
-        def generate(context: Any, builder: Any, signature: Any, arguments: Any) -> Any:
-            left = _broadcast(context, builder, arguments[0], signature.args[0])
-            right = _broadcast(context, builder, arguments[1], signature.args[1])
-            function = _vector_function(builder, name, 2)
-            return builder.call(function, [left, right])
+    def combine(builder: Any, left: Any, right: Any) -> Any:
+        return builder.call(_vector_function(builder, name, 2), [left, right])
 
-        return doubles8(a, b), generate
-
-    return operation
+    return _binary(doubles8, combine)
 
 
 min8 = _binary_llvm("llvm.minnum")
@@ -202,17 +206,11 @@ max8 = _binary_llvm("llvm.maxnum")
 
 
 def _comparison(predicate: str) -> Any:
-    @_compiled
-    def operation(typingctx: Any, a: Any, b: Any) -> Any:
-        def generate(context: Any, builder: Any, signature: Any, arguments: Any) -> Any:
-            left = _broadcast(context, builder, arguments[0], signature.args[0])
-            right = _broadcast(context, builder, arguments[1], signature.args[1])
-            bits = builder.bitcast(builder.fcmp_ordered(predicate, left, right), ir.IntType(WIDTH))
-            return builder.zext(bits, ir.IntType(64))
+    def combine(builder: Any, left: Any, right: Any) -> Any:
+        bits = builder.bitcast(builder.fcmp_ordered(predicate, left, right), ir.IntType(WIDTH))
+        return builder.zext(bits, ir.IntType(64))
 
-        return types.int64(a, b), generate
-
-    return operation
+    return _binary(types.int64, combine)
 
 
 less8 = _comparison("<")
