@@ -227,6 +227,7 @@ def rrt_connect_iterations(
     times the other's size waits its turn."""
     capacity = nodes.shape[1]
     scratch = validity_scratch(arrays, nodes.shape[2])  # the validity kernel's buffers, for every check
+    target = np.empty(lower.shape[0])  # each iteration's sample (`_extend` copies what it keeps)
     used = 0
     for _ in range(block):
         if counters[COUNTER_ITERATIONS] >= max_iterations:
@@ -234,7 +235,6 @@ def rrt_connect_iterations(
         if max(counters[COUNTER_SIZES], counters[COUNTER_SIZES + 1]) + counters[COUNTER_ROOM] > capacity:
             break
         used += 1
-        target = np.empty(lower.shape[0])
         sample_into(seed, counters[COUNTER_ITERATIONS], lower, upper, target)
         counters[COUNTER_ITERATIONS] += 1
         growing = counters[COUNTER_GROWING]
