@@ -5,7 +5,7 @@ first invalid row of a batch is the kernel's."""
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
@@ -14,10 +14,10 @@ import pytest
 from kitchen_tamp.motion.geometry.primitive_scene import PrimitiveObstacle, arm_among_obstacles
 from kitchen_tamp.motion.geometry.spheres import SphereCollisionChecker
 from kitchen_tamp.motion.geometry.spheres.kernels.codes import FIXED, PRISMATIC, REVOLUTE, REVOLUTE_Z, SKIPPED
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.buffers import lane_buffers
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES, lane_link_poses
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import (
     first_invalid_in_lanes,
-    lane_scratch,
     lanes_cleared,
 )
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.simd import (
@@ -39,6 +39,20 @@ from kitchen_tamp.motion.geometry.spheres.kernels.validity_fields import origin_
 from kitchen_tamp.motion.motion_bench_maker import mbm_panda
 from kitchen_tamp.world import panda_urdf_path
 from tests.motion.poses import pose, rotation
+
+
+class Chain(NamedTuple):
+    """The links' fields `lane_link_poses` reads (a `ValidityArrays` in the screen), in the order
+    `folded_link_poses` takes them."""
+
+    root: np.ndarray
+    parents: np.ndarray
+    origins: np.ndarray
+    kinds: np.ndarray
+    axes: np.ndarray
+    variables: np.ndarray
+    origin_axes: np.ndarray
+
 
 LANE_POSES: Any = lane_link_poses
 FOLDED_POSES: Any = folded_link_poses
@@ -88,7 +102,7 @@ def spheres(tmp_path_factory: pytest.TempPathFactory) -> Iterator[SphereCollisio
 @numba.njit(cache=True)
 def _screened(qs: Any, arrays: Any, margin: float) -> Any:
     """Per row: whether the screen clears it."""
-    lanes = lane_scratch(arrays, qs.shape[1])
+    lanes = lane_buffers(arrays, qs.shape[1])
     cleared = np.zeros(qs.shape[0], dtype=np.bool_)
     for first in range(0, qs.shape[0], LANES):
         bits = lanes_cleared(qs, first, arrays, margin, lanes)
@@ -140,7 +154,7 @@ def test_the_screen_clears_configurations_beside_the_table_of_motion_bench_maker
 def test_the_first_invalid_row_of_a_batch_is_the_kernels(spheres: SphereCollisionChecker) -> None:
     arrays, margin = spheres.compiled_validity()
     qs = _along_segments(np.random.default_rng(8), spheres.lower, spheres.upper, 80)
-    scratch, lanes = validity_scratch(arrays, 7), lane_scratch(arrays, 7)
+    scratch, lanes = validity_scratch(arrays, 7), lane_buffers(arrays, 7)
     firsts = []
     for batch in np.split(qs, 160):  # batches of 50 rows: six lanes' worth and a partial one
         valid = valid_rows(batch, arrays, margin, False, scratch)
@@ -163,13 +177,14 @@ def test_the_lanes_place_every_kind_of_link_where_the_kernel_does() -> None:
     origins = np.stack([rotation(rng.normal(size=3), rng.uniform(-3, 3)) for _ in range(len(kinds))])
     origins[5, :3, :3] = [[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]  # quarter turns
     origins[:, :3, 3] = rng.normal(size=(len(kinds), 3))
-    chain = (origins[0].copy(), parents, origins, kinds, axes, variables, origin_axes(origins, kinds))
-    assert chain[6][5, 0] != 0 and not chain[6][2].any()  # both paths of a joint about z
+    chain = Chain(origins[0].copy(), parents, origins, kinds, axes, variables, origin_axes(origins, kinds))
+    assert chain.origin_axes[5, 0] != 0 and not chain.origin_axes[2].any()  # both paths of a joint about z
     qs = rng.uniform(-3.5, 3.5, size=(LANES, 4))
-    lanes = (np.ascontiguousarray(qs.T).reshape(-1), np.empty(4 * LANES), np.empty(4 * LANES))
-    lanes += (np.full(len(kinds) * 12 * LANES, np.nan),)
-    LANE_POSES(chain, lanes)
-    in_lanes = lanes[3].reshape(len(kinds), 3, 4, LANES)
+    in_lanes = np.full(len(kinds) * 12 * LANES, np.nan)
+    LANE_POSES(
+        chain, np.ascontiguousarray(qs.T).reshape(-1), np.empty(4 * LANES), np.empty(4 * LANES), in_lanes
+    )
+    in_lanes = in_lanes.reshape(len(kinds), 3, 4, LANES)
     poses, frame = np.full((len(kinds), 3, 4), np.nan), np.empty((3, 4))
     sines, cosines = np.empty(4), np.empty(4)
     for m in range(LANES):

@@ -20,8 +20,9 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.buffers import lane_buffers
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import LANES
-from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import first_invalid_in_lanes, lane_scratch
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.screen import first_invalid_in_lanes
 from kitchen_tamp.motion.geometry.spheres.kernels.validity import valid_rows
 from kitchen_tamp.motion.geometry.spheres.kernels.validity_arrays import (
     ValidityArrays,
@@ -78,7 +79,7 @@ def _first_invalid_in_batches(
     first configuration)."""
     count, dimension = shares.shape[0], q0.shape[0]
     qs = np.empty((count, dimension))
-    lanes = lane_scratch(arrays, dimension)
+    lanes = lane_buffers(arrays, dimension)
     start, size = 0, FIRST_BATCH_SIZE
     while start < count:
         stop = min(count, start + size)

@@ -40,9 +40,11 @@ ALL_LANES = (1 << LANES) - 1
 LIMIT_TOLERANCE = 1e-9
 """How far past a joint limit a value still counts as within it: the validity kernel's tolerance."""
 
-Chain = tuple[Any, ...]
-"""The links as `primitives.folded_link_poses` takes them: (root, parents, origins, kinds, axes,
-variables, origin_axes)."""
+Chain = Any
+"""The links as `primitives.folded_link_poses` takes them, as fields: ``root``, ``parents``,
+``origins``, ``kinds``, ``axes``, ``variables`` and ``origin_axes`` (a `ValidityArrays`). One
+object, not a tuple of seven arrays: a compiled call counts a reference to each array it is passed
+(`buffers`), and the links are passed once per link."""
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -97,7 +99,7 @@ def _quarter_turn_z(
 ) -> None:
     """`primitives._quarter_turn_z` in every lane: the parent's columns permuted and signed (the
     origin's rotation), turned about z, and the origin's translation."""
-    origin_axes, origins, variable = chain[6], chain[2], chain[5][link]
+    origin_axes, origins, variable = chain.origin_axes, chain.origins, chain.variables[link]
     a0, a1, a2 = origin_axes[link, 0], origin_axes[link, 1], origin_axes[link, 2]
     r0, r1, r2 = abs(a0) - 1, abs(a1) - 1, abs(a2) - 1
     g0, g1, g2 = (1.0 if a0 > 0 else -1.0), (1.0 if a1 > 0 else -1.0), (1.0 if a2 > 0 else -1.0)
@@ -114,11 +116,19 @@ def _quarter_turn_z(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _moved_link(poses: FloatArray, parent: int, link: int, chain: Chain, lanes: tuple[Any, ...]) -> None:
+def _moved_link(
+    poses: FloatArray,
+    parent: int,
+    link: int,
+    chain: Chain,
+    values: FloatArray,
+    sines: FloatArray,
+    cosines: FloatArray,
+) -> None:
     """poses[link] = poses[parent] @ origins[link], moved by the link's joint (FIXED, REVOLUTE_Z,
     REVOLUTE or PRISMATIC about its axis), in every lane."""
-    values, sines, cosines = lanes[0], lanes[1], lanes[2]
-    origins, kind, variable, axes = chain[2], chain[3][link], max(chain[5][link], 0), chain[4]
+    origins, axes = chain.origins, chain.axes
+    kind, variable = chain.kinds[link], max(chain.variables[link], 0)
     x, y, z = axes[link, 0], axes[link, 1], axes[link, 2]
     c, s = load8(cosines, variable * LANES), load8(sines, variable * LANES)
     value = load8(values, variable * LANES)
@@ -147,12 +157,13 @@ def _moved_link(poses: FloatArray, parent: int, link: int, chain: Chain, lanes: 
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def lane_link_poses(chain: Chain, lanes: tuple[Any, ...]) -> None:
-    """Every kept link's pose (``lanes[3]``) at the lanes' configurations (``lanes[0]``), as
-    `primitives.folded_link_poses` places them; the sines and cosines in ``lanes[1]`` and ``[2]``."""
-    values, sines, cosines, poses = lanes[0], lanes[1], lanes[2], lanes[3]
+def lane_link_poses(
+    chain: Chain, values: FloatArray, sines: FloatArray, cosines: FloatArray, poses: FloatArray
+) -> None:
+    """Every kept link's pose (into ``poses``) at the lanes' configurations (``values``), as
+    `primitives.folded_link_poses` places them; the sines and cosines into ``sines``, ``cosines``."""
     _sines_cosines(values, sines, cosines)
-    root, parents, kinds, origin_axes = chain[0], chain[1], chain[3], chain[6]
+    root, parents, kinds, origin_axes = chain.root, chain.parents, chain.kinds, chain.origin_axes
     for link in range(parents.shape[0]):
         kind, parent = kinds[link], parents[link]
         if kind == SKIPPED:
@@ -163,4 +174,4 @@ def lane_link_poses(chain: Chain, lanes: tuple[Any, ...]) -> None:
         elif kind == REVOLUTE_Z and origin_axes[link, 0] != 0:
             _quarter_turn_z(poses, parent, link, chain, sines, cosines)
         else:
-            _moved_link(poses, parent, link, chain, lanes)
+            _moved_link(poses, parent, link, chain, values, sines, cosines)

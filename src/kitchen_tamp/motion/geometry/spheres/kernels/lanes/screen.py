@@ -33,6 +33,7 @@ import numpy.typing as npt
 
 from kitchen_tamp.motion.geometry.spheres.kernels.codes import SHAPE_CYLINDER, SHAPE_SPHERE
 from kitchen_tamp.motion.geometry.spheres.kernels.distance_grid_frame import GRID_UNIT
+from kitchen_tamp.motion.geometry.spheres.kernels.lanes.buffers import LaneBuffers
 from kitchen_tamp.motion.geometry.spheres.kernels.lanes.kinematics import (
     ALL_LANES,
     LANES,
@@ -66,10 +67,6 @@ FALLBACK_LANES = 3
 the same for one lane as for eight, and fewer are cheaper to leave to the kernel, which rejects a
 colliding configuration as soon as it finds it."""
 
-LaneScratch = tuple[Any, ...]
-"""What the screen works in (`lane_scratch`): the lanes' joint values, sines and cosines, link
-poses and group bounds (lane innermost, `kinematics`), and the rows left to the kernel."""
-
 
 @numba.njit(cache=True, forceinline=True)
 def _count(lanes: int) -> int:
@@ -79,22 +76,6 @@ def _count(lanes: int) -> int:
         lanes &= lanes - 1
         count += 1
     return count
-
-
-@numba.njit(cache=True)
-def lane_scratch(arrays: ValidityArrays, dimension: int) -> LaneScratch:
-    """Buffers for `first_invalid_in_lanes` on ``arrays``' model, configurations of ``dimension``."""
-    links, groups = arrays.parents.shape[0], arrays.group_radii.shape[0]
-    return (
-        np.empty(dimension * LANES),
-        np.empty(dimension * LANES),
-        np.empty(dimension * LANES),
-        np.empty(links * 12 * LANES),
-        np.empty(groups * 3 * LANES),
-        np.empty((LANES, dimension)),
-        np.empty(LANES, dtype=np.int64),
-        np.empty(arrays.group_pairs.shape[0], dtype=np.int64),
-    )
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -116,25 +97,43 @@ def _grid_clears(x: Any, y: Any, z: Any, arrays: ValidityArrays, reach: float) -
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
+def _into_obstacle(dx: Any, dy: Any, dz: Any, arrays: ValidityArrays, b: int) -> tuple[Any, Any, Any]:
+    """The offsets (dx, dy, dz) from obstacle ``b``'s centre in its own frame, in every lane."""
+    rotation = arrays.box_rotations
+    return (
+        dx * rotation[b, 0, 0] + dy * rotation[b, 1, 0] + dz * rotation[b, 2, 0],
+        dx * rotation[b, 0, 1] + dy * rotation[b, 1, 1] + dz * rotation[b, 2, 1],
+        dx * rotation[b, 0, 2] + dy * rotation[b, 1, 2] + dz * rotation[b, 2, 2],
+    )
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
 def _obstacle_gap(x: Any, y: Any, z: Any, arrays: ValidityArrays, b: int) -> Any:
     """`primitives.box_gap_at` in every lane: the signed distance from the points to obstacle ``b``
     (a box's or a cylinder's as the length of the outside excess plus the largest excess when
-    none is outside, the kernel's two cases in one expression)."""
-    centers, halves, rotations = arrays.box_centers, arrays.box_halves, arrays.box_rotations
-    dx, dy, dz = x - centers[b, 0], y - centers[b, 1], z - centers[b, 2]
+    none is outside, the kernel's two cases in one expression). The obstacle's numbers are read
+    first, each field where it is used (`buffers`: a field held across the branches below would
+    be counted on entry and dropped on exit)."""
     kind = arrays.box_kinds[b]
+    hx, hy, hz = arrays.box_halves[b, 0], arrays.box_halves[b, 1], arrays.box_halves[b, 2]
+    dx, dy, dz = x - arrays.box_centers[b, 0], y - arrays.box_centers[b, 1], z - arrays.box_centers[b, 2]
     if kind == SHAPE_SPHERE:
-        return sqrt8(dx * dx + dy * dy + dz * dz) - halves[b, 0]
-    lx = dx * rotations[b, 0, 0] + dy * rotations[b, 1, 0] + dz * rotations[b, 2, 0]
-    ly = dx * rotations[b, 0, 1] + dy * rotations[b, 1, 1] + dz * rotations[b, 2, 1]
-    lz = dx * rotations[b, 0, 2] + dy * rotations[b, 1, 2] + dz * rotations[b, 2, 2]
+        return sqrt8(dx * dx + dy * dy + dz * dz) - hx
+    lx, ly, lz = _into_obstacle(dx, dy, dz, arrays, b)
     if kind == SHAPE_CYLINDER:
-        radial, axial = sqrt8(lx * lx + ly * ly) - halves[b, 0], abs8(lz) - halves[b, 2]
+        radial, axial = sqrt8(lx * lx + ly * ly) - hx, abs8(lz) - hz
         out_radial, out_axial = max8(radial, 0.0), max8(axial, 0.0)
         return sqrt8(out_radial * out_radial + out_axial * out_axial) + min8(max8(radial, axial), 0.0)
-    ex, ey, ez = abs8(lx) - halves[b, 0], abs8(ly) - halves[b, 1], abs8(lz) - halves[b, 2]
+    ex, ey, ez = abs8(lx) - hx, abs8(ly) - hy, abs8(lz) - hz
     ox, oy, oz = max8(ex, 0.0), max8(ey, 0.0), max8(ez, 0.0)
     return sqrt8(ox * ox + oy * oy + oz * oz) + min8(max8(max8(ex, ey), ez), 0.0)
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _coarse_centre(arrays: ValidityArrays, s: int) -> tuple[float, float, float]:
+    """Coarse sphere ``s``'s centre in its link's frame."""
+    local = arrays.coarse_local
+    return local[0, s], local[1, s], local[2, s]
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
@@ -143,12 +142,12 @@ def _spheres_clear_obstacle(
 ) -> int:
     """Of ``lanes``, those where each of group ``g``'s coarse spheres is at least its radius and the
     margin from obstacle ``b``."""
-    local, radii, row = arrays.coarse_local, arrays.sphere_radii, arrays.group_links[g] * 12 * LANES
+    row = arrays.group_links[g] * 12 * LANES
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
-        x, y, z = local[0, s], local[1, s], local[2, s]
+        x, y, z = _coarse_centre(arrays, s)
         wx, wy = lane_point(poses, row, x, y, z), lane_point(poses, row + 4 * LANES, x, y, z)
         gap = _obstacle_gap(wx, wy, lane_point(poses, row + 8 * LANES, x, y, z), arrays, b)
-        lanes &= at_least8(gap, radii[s] + margin + SLACK)
+        lanes &= at_least8(gap, arrays.sphere_radii[s] + margin + SLACK)
         if lanes == 0:
             break
     return lanes
@@ -156,13 +155,13 @@ def _spheres_clear_obstacle(
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _group_clears_obstacles(
-    g: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+    g: int, lanes: int, arrays: ValidityArrays, margin: float, poses: FloatArray, group_world: FloatArray
 ) -> int:
     """Of ``lanes``, those where group ``g`` is cleared of every obstacle it is checked against:
     the obstacle's bounds or exact gap far from the group's bound, or else each coarse sphere far."""
     bound = g * 3 * LANES
-    x, y = load8(scratch[4], bound), load8(scratch[4], bound + LANES)
-    z = load8(scratch[4], bound + 2 * LANES)
+    x, y = load8(group_world, bound), load8(group_world, bound + LANES)
+    z = load8(group_world, bound + 2 * LANES)
     reach, boxes = arrays.group_radii[g] + margin + SLACK, arrays.box_kinds.shape[0]
     for b in range(boxes):
         if arrays.unchecked[g * boxes + b] > 0.0:
@@ -174,7 +173,7 @@ def _group_clears_obstacles(
         if near:
             near &= less8(_obstacle_gap(x, y, z, arrays, b), reach)
         if _count(near) >= FALLBACK_LANES:
-            lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, scratch[3])
+            lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, poses)
         elif near:
             lanes &= ~near
             if lanes == 0:
@@ -183,10 +182,11 @@ def _group_clears_obstacles(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _obstacles_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+def _obstacles_clear(
+    arrays: ValidityArrays, margin: float, poses: FloatArray, group_world: FloatArray, cleared: int
+) -> int:
     """Of the lanes ``cleared``, those where every group is cleared of every obstacle; each group's
-    bound placed in ``scratch[4]`` on the way."""
-    poses, group_world = scratch[3], scratch[4]
+    bound placed in ``group_world`` on the way."""
     links, centers, radii = arrays.group_links, arrays.group_centers, arrays.group_radii
     for g in range(radii.shape[0]):
         row, bound = links[g] * 12 * LANES, g * 3 * LANES
@@ -201,7 +201,7 @@ def _obstacles_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch
         x, y = load8(group_world, bound), load8(group_world, bound + LANES)
         doubtful = cleared & ~_grid_clears(x, y, load8(group_world, bound + 2 * LANES), arrays, reach + SLACK)
         if doubtful:
-            cleared &= ~doubtful | _group_clears_obstacles(g, doubtful, arrays, margin, scratch)
+            cleared &= ~doubtful | _group_clears_obstacles(g, doubtful, arrays, margin, poses, group_world)
     return cleared
 
 
@@ -219,20 +219,25 @@ def _table_states(values: FloatArray, t: int, arrays: ValidityArrays) -> Any:
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _spheres_near_bound(
-    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+    g: int,
+    h: int,
+    lanes: int,
+    arrays: ValidityArrays,
+    margin: float,
+    poses: FloatArray,
+    group_world: FloatArray,
 ) -> int:
     """Of ``lanes``, those where some coarse sphere of group ``g`` comes near group ``h``'s bound."""
-    local, radii, poses, group_world = arrays.coarse_local, arrays.sphere_radii, scratch[3], scratch[4]
     row, bound = arrays.group_links[g] * 12 * LANES, h * 3 * LANES
     bx, by = load8(group_world, bound), load8(group_world, bound + LANES)
     bz = load8(group_world, bound + 2 * LANES)
     near = 0
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
-        x, y, z = local[0, s], local[1, s], local[2, s]
+        x, y, z = _coarse_centre(arrays, s)
         dx = lane_point(poses, row, x, y, z) - bx
         dy = lane_point(poses, row + 4 * LANES, x, y, z) - by
         dz = lane_point(poses, row + 8 * LANES, x, y, z) - bz
-        reach = radii[s] + arrays.group_radii[h] + margin + SLACK
+        reach = arrays.sphere_radii[s] + arrays.group_radii[h] + margin + SLACK
         near |= lanes & less8(dx * dx + dy * dy + dz * dz, reach * reach)
         if near == lanes:
             break
@@ -241,39 +246,45 @@ def _spheres_near_bound(
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _coarse_pair_clear(
-    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+    g: int,
+    h: int,
+    lanes: int,
+    arrays: ValidityArrays,
+    margin: float,
+    poses: FloatArray,
+    group_world: FloatArray,
 ) -> int:
     """Of ``lanes``, those where the kernel's coarse level clears the self pair (g, h): no coarse
     sphere of one group near the other's bound, or no two of their coarse spheres near."""
-    near = _spheres_near_bound(g, h, lanes, arrays, margin, scratch)
+    near = _spheres_near_bound(g, h, lanes, arrays, margin, poses, group_world)
     if near:
-        near = _spheres_near_bound(h, g, near, arrays, margin, scratch)
-    local, radii, links, poses = arrays.coarse_local, arrays.sphere_radii, arrays.group_links, scratch[3]
-    g_row, h_row = links[g] * 12 * LANES, links[h] * 12 * LANES
+        near = _spheres_near_bound(h, g, near, arrays, margin, poses, group_world)
+    g_row, h_row = arrays.group_links[g] * 12 * LANES, arrays.group_links[h] * 12 * LANES
     apart = near
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
         if apart == 0:
             break
-        x, y, z = local[0, s], local[1, s], local[2, s]
+        x, y, z = _coarse_centre(arrays, s)
         sx, sy = lane_point(poses, g_row, x, y, z), lane_point(poses, g_row + 4 * LANES, x, y, z)
         sz = lane_point(poses, g_row + 8 * LANES, x, y, z)
         for u in range(arrays.group_starts[h], arrays.group_stops[h]):
-            x, y, z = local[0, u], local[1, u], local[2, u]
+            x, y, z = _coarse_centre(arrays, u)
             dx = sx - lane_point(poses, h_row, x, y, z)
             dy = sy - lane_point(poses, h_row + 4 * LANES, x, y, z)
             dz = sz - lane_point(poses, h_row + 8 * LANES, x, y, z)
-            reach = radii[s] + radii[u] + margin + SLACK
+            reach = arrays.sphere_radii[s] + arrays.sphere_radii[u] + margin + SLACK
             if reach > 0.0:
                 apart &= at_least8(dx * dx + dy * dy + dz * dz, reach * reach)
     return lanes & (~near | apart)
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _tables_read(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+def _tables_read(
+    arrays: ValidityArrays, margin: float, values: FloatArray, proved: npt.NDArray[np.int64], cleared: int
+) -> int:
     """Of the lanes ``cleared``, those no pair table proves colliding; per self pair, the lanes its
-    table proves clear into ``scratch[7]`` (each proof where the kernel uses it). Read before the
+    table proves clear into ``proved`` (each proof where the kernel uses it). Read before the
     kinematics, as the kernel reads them: a configuration a table rejects costs nothing more."""
-    values, proved = scratch[0], scratch[7]
     pairs = arrays.group_pairs
     clear_usable, colliding_usable = margin <= arrays.table_margin, margin >= arrays.table_margin
     for k in range(pairs.shape[0]):
@@ -290,10 +301,16 @@ def _tables_read(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cl
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratch, cleared: int) -> int:
+def _self_pairs_clear(
+    arrays: ValidityArrays,
+    margin: float,
+    poses: FloatArray,
+    group_world: FloatArray,
+    proved_by_table: npt.NDArray[np.int64],
+    cleared: int,
+) -> int:
     """Of the lanes ``cleared``, those where each self pair is proved clear by its table
     (`_tables_read`), its groups' bounds or their coarse spheres."""
-    group_world, proved_by_table = scratch[4], scratch[7]
     pairs, radii = arrays.group_pairs, arrays.group_radii
     for k in range(pairs.shape[0]):
         doubtful = cleared & ~proved_by_table[k]
@@ -308,7 +325,7 @@ def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratc
         dz = load8(group_world, (g * 3 + 2) * LANES) - load8(group_world, (h * 3 + 2) * LANES)
         doubtful &= less8(dx * dx + dy * dy + dz * dz, reach * reach)
         if _count(doubtful) >= FALLBACK_LANES:
-            cleared &= ~doubtful | _coarse_pair_clear(g, h, doubtful, arrays, margin, scratch)
+            cleared &= ~doubtful | _coarse_pair_clear(g, h, doubtful, arrays, margin, poses, group_world)
         elif doubtful:
             cleared &= ~doubtful
             if cleared == 0:
@@ -318,45 +335,46 @@ def _self_pairs_clear(arrays: ValidityArrays, margin: float, scratch: LaneScratc
 
 @numba.njit(cache=True, fastmath=True)
 def lanes_cleared(
-    qs: FloatArray, first: int, arrays: ValidityArrays, margin: float, scratch: LaneScratch
+    qs: FloatArray, first: int, arrays: ValidityArrays, margin: float, lanes: LaneBuffers
 ) -> int:
     """Screen rows ``first`` .. ``first + LANES`` of ``qs`` (past its end, the lanes repeat its last
     row): bit ``k`` set when row ``first + k`` is cleared, a configuration the kernel accepts."""
-    values = scratch[0]
+    values = lanes.values
     rows = min(LANES, qs.shape[0] - first)
     for lane in range(LANES):
         row = first + min(lane, rows - 1)
         for j in range(qs.shape[1]):
             values[j * LANES + lane] = qs[row, j]
-    cleared = _tables_read(arrays, margin, scratch, within_limits(values, arrays.lower, arrays.upper))
+    # Each step takes the buffers it uses: a compiled call counts a reference to each array it is
+    # passed (`buffers`).
+    poses, group_world, proved = lanes.poses, lanes.group_world, lanes.proved
+    cleared = _tables_read(arrays, margin, values, proved, within_limits(values, arrays.lower, arrays.upper))
     if cleared == 0:
         return 0
-    links = (arrays.root, arrays.parents, arrays.origins, arrays.kinds, arrays.axes)
-    lane_link_poses((*links, arrays.variables, arrays.origin_axes), scratch)
-    cleared = _obstacles_clear(arrays, margin, scratch, cleared)
-    return int(_self_pairs_clear(arrays, margin, scratch, cleared) & ((1 << rows) - 1))
+    lane_link_poses(arrays, values, lanes.sines, lanes.cosines, poses)
+    cleared = _obstacles_clear(arrays, margin, poses, group_world, cleared)
+    return int(_self_pairs_clear(arrays, margin, poses, group_world, proved, cleared) & ((1 << rows) - 1))
 
 
 @numba.njit(cache=True)
 def first_invalid_in_lanes(
-    qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch, lanes: LaneScratch
+    qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch, lanes: LaneBuffers
 ) -> int:
     """The first row of ``qs`` the validity kernel rejects, or -1: ``LANES`` rows at a time screened
     (`lanes_cleared`), the rows not cleared checked by `valid_rows` (working in ``scratch``)."""
-    left, left_rows = lanes[5], lanes[6]
     for first in range(0, qs.shape[0], LANES):
         cleared = lanes_cleared(qs, first, arrays, margin, lanes)
         count = 0
         for lane in range(min(LANES, qs.shape[0] - first)):
             if not cleared >> lane & 1:
                 for j in range(qs.shape[1]):
-                    left[count, j] = qs[first + lane, j]
-                left_rows[count] = first + lane
+                    lanes.left[count, j] = qs[first + lane, j]
+                lanes.left_rows[count] = first + lane
                 count += 1
         if count == 0:
             continue
-        valid = valid_rows(left[:count], arrays, margin, True, scratch)
+        valid = valid_rows(lanes.left[:count], arrays, margin, True, scratch)
         for i in range(count):
             if not valid[i]:
-                return int(left_rows[i])
+                return int(lanes.left_rows[i])
     return -1
