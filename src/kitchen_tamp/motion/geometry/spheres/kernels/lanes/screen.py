@@ -130,23 +130,28 @@ def _obstacle_gap(x: Any, y: Any, z: Any, arrays: ValidityArrays, b: int) -> Any
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _coarse_centre(arrays: ValidityArrays, s: int) -> tuple[float, float, float]:
-    """Coarse sphere ``s``'s centre in its link's frame."""
-    local = arrays.coarse_local
-    return local[0, s], local[1, s], local[2, s]
+def _coarse_sphere_at(s: int, row: int, arrays: ValidityArrays, buffers: LaneBuffers) -> tuple[Any, Any, Any]:
+    """Coarse sphere ``s``'s centre in the world in every lane (``row``: where its link's pose
+    starts in ``buffers.poses``)."""
+    x, y, z = arrays.coarse_local[0, s], arrays.coarse_local[1, s], arrays.coarse_local[2, s]
+    poses = buffers.poses
+    return (
+        lane_point(poses, row, x, y, z),
+        lane_point(poses, row + 4 * LANES, x, y, z),
+        lane_point(poses, row + 8 * LANES, x, y, z),
+    )
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _spheres_clear_obstacle(
-    g: int, b: int, lanes: int, arrays: ValidityArrays, margin: float, poses: FloatArray
+    g: int, b: int, lanes: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers
 ) -> int:
     """Of ``lanes``, those where each of group ``g``'s coarse spheres is at least its radius and the
     margin from obstacle ``b``."""
     row = arrays.group_links[g] * 12 * LANES
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
-        x, y, z = _coarse_centre(arrays, s)
-        wx, wy = lane_point(poses, row, x, y, z), lane_point(poses, row + 4 * LANES, x, y, z)
-        gap = _obstacle_gap(wx, wy, lane_point(poses, row + 8 * LANES, x, y, z), arrays, b)
+        wx, wy, wz = _coarse_sphere_at(s, row, arrays, buffers)
+        gap = _obstacle_gap(wx, wy, wz, arrays, b)
         lanes &= at_least8(gap, arrays.sphere_radii[s] + margin + SLACK)
         if lanes == 0:
             break
@@ -155,13 +160,13 @@ def _spheres_clear_obstacle(
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _group_clears_obstacles(
-    g: int, lanes: int, arrays: ValidityArrays, margin: float, poses: FloatArray, group_world: FloatArray
+    g: int, lanes: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers
 ) -> int:
     """Of ``lanes``, those where group ``g`` is cleared of every obstacle it is checked against:
     the obstacle's bounds or exact gap far from the group's bound, or else each coarse sphere far."""
     bound = g * 3 * LANES
-    x, y = load8(group_world, bound), load8(group_world, bound + LANES)
-    z = load8(group_world, bound + 2 * LANES)
+    x, y = load8(buffers.group_world, bound), load8(buffers.group_world, bound + LANES)
+    z = load8(buffers.group_world, bound + 2 * LANES)
     reach, boxes = arrays.group_radii[g] + margin + SLACK, arrays.box_kinds.shape[0]
     for b in range(boxes):
         if arrays.unchecked[g * boxes + b] > 0.0:
@@ -173,7 +178,7 @@ def _group_clears_obstacles(
         if near:
             near &= less8(_obstacle_gap(x, y, z, arrays, b), reach)
         if _count(near) >= FALLBACK_LANES:
-            lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, poses)
+            lanes &= ~near | _spheres_clear_obstacle(g, b, near, arrays, margin, buffers)
         elif near:
             lanes &= ~near
             if lanes == 0:
@@ -182,26 +187,33 @@ def _group_clears_obstacles(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _obstacles_clear(
-    arrays: ValidityArrays, margin: float, poses: FloatArray, group_world: FloatArray, cleared: int
-) -> int:
+def _placed_group_bound(g: int, arrays: ValidityArrays, buffers: LaneBuffers) -> tuple[Any, Any, Any]:
+    """Group ``g``'s bound's centre in every lane, also stored in ``buffers.group_world``."""
+    row, bound = arrays.group_links[g] * 12 * LANES, g * 3 * LANES
+    cx, cy, cz = arrays.group_centers[g, 0], arrays.group_centers[g, 1], arrays.group_centers[g, 2]
+    x = lane_point(buffers.poses, row, cx, cy, cz)
+    y = lane_point(buffers.poses, row + 4 * LANES, cx, cy, cz)
+    z = lane_point(buffers.poses, row + 8 * LANES, cx, cy, cz)
+    store8(buffers.group_world, bound, x)
+    store8(buffers.group_world, bound + LANES, y)
+    store8(buffers.group_world, bound + 2 * LANES, z)
+    return x, y, z
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _obstacles_clear(arrays: ValidityArrays, margin: float, buffers: LaneBuffers, cleared: int) -> int:
     """Of the lanes ``cleared``, those where every group is cleared of every obstacle; each group's
-    bound placed in ``group_world`` on the way."""
-    links, centers, radii = arrays.group_links, arrays.group_centers, arrays.group_radii
-    for g in range(radii.shape[0]):
-        row, bound = links[g] * 12 * LANES, g * 3 * LANES
-        cx, cy, cz = centers[g, 0], centers[g, 1], centers[g, 2]
-        for k in range(3):
-            store8(group_world, bound + k * LANES, lane_point(poses, row + 4 * k * LANES, cx, cy, cz))
-        reach = radii[g] + margin
+    bound placed in ``buffers.group_world`` on the way."""
+    for g in range(arrays.group_radii.shape[0]):
+        x, y, z = _placed_group_bound(g, arrays, buffers)
+        reach = arrays.group_radii[g] + margin
         if cleared == 0:
             break
         if reach <= 0.0:
             continue
-        x, y = load8(group_world, bound), load8(group_world, bound + LANES)
-        doubtful = cleared & ~_grid_clears(x, y, load8(group_world, bound + 2 * LANES), arrays, reach + SLACK)
+        doubtful = cleared & ~_grid_clears(x, y, z, arrays, reach + SLACK)
         if doubtful:
-            cleared &= ~doubtful | _group_clears_obstacles(g, doubtful, arrays, margin, poses, group_world)
+            cleared &= ~doubtful | _group_clears_obstacles(g, doubtful, arrays, margin, buffers)
     return cleared
 
 
@@ -219,24 +231,16 @@ def _table_states(values: FloatArray, t: int, arrays: ValidityArrays) -> Any:
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _spheres_near_bound(
-    g: int,
-    h: int,
-    lanes: int,
-    arrays: ValidityArrays,
-    margin: float,
-    poses: FloatArray,
-    group_world: FloatArray,
+    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers
 ) -> int:
     """Of ``lanes``, those where some coarse sphere of group ``g`` comes near group ``h``'s bound."""
     row, bound = arrays.group_links[g] * 12 * LANES, h * 3 * LANES
-    bx, by = load8(group_world, bound), load8(group_world, bound + LANES)
-    bz = load8(group_world, bound + 2 * LANES)
+    bx, by = load8(buffers.group_world, bound), load8(buffers.group_world, bound + LANES)
+    bz = load8(buffers.group_world, bound + 2 * LANES)
     near = 0
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
-        x, y, z = _coarse_centre(arrays, s)
-        dx = lane_point(poses, row, x, y, z) - bx
-        dy = lane_point(poses, row + 4 * LANES, x, y, z) - by
-        dz = lane_point(poses, row + 8 * LANES, x, y, z) - bz
+        dx, dy, dz = _coarse_sphere_at(s, row, arrays, buffers)
+        dx, dy, dz = dx - bx, dy - by, dz - bz
         reach = arrays.sphere_radii[s] + arrays.group_radii[h] + margin + SLACK
         near |= lanes & less8(dx * dx + dy * dy + dz * dz, reach * reach)
         if near == lanes:
@@ -246,32 +250,22 @@ def _spheres_near_bound(
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
 def _coarse_pair_clear(
-    g: int,
-    h: int,
-    lanes: int,
-    arrays: ValidityArrays,
-    margin: float,
-    poses: FloatArray,
-    group_world: FloatArray,
+    g: int, h: int, lanes: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers
 ) -> int:
     """Of ``lanes``, those where the kernel's coarse level clears the self pair (g, h): no coarse
     sphere of one group near the other's bound, or no two of their coarse spheres near."""
-    near = _spheres_near_bound(g, h, lanes, arrays, margin, poses, group_world)
+    near = _spheres_near_bound(g, h, lanes, arrays, margin, buffers)
     if near:
-        near = _spheres_near_bound(h, g, near, arrays, margin, poses, group_world)
+        near = _spheres_near_bound(h, g, near, arrays, margin, buffers)
     g_row, h_row = arrays.group_links[g] * 12 * LANES, arrays.group_links[h] * 12 * LANES
     apart = near
     for s in range(arrays.group_starts[g], arrays.group_stops[g]):
         if apart == 0:
             break
-        x, y, z = _coarse_centre(arrays, s)
-        sx, sy = lane_point(poses, g_row, x, y, z), lane_point(poses, g_row + 4 * LANES, x, y, z)
-        sz = lane_point(poses, g_row + 8 * LANES, x, y, z)
+        sx, sy, sz = _coarse_sphere_at(s, g_row, arrays, buffers)
         for u in range(arrays.group_starts[h], arrays.group_stops[h]):
-            x, y, z = _coarse_centre(arrays, u)
-            dx = sx - lane_point(poses, h_row, x, y, z)
-            dy = sy - lane_point(poses, h_row + 4 * LANES, x, y, z)
-            dz = sz - lane_point(poses, h_row + 8 * LANES, x, y, z)
+            ux, uy, uz = _coarse_sphere_at(u, h_row, arrays, buffers)
+            dx, dy, dz = sx - ux, sy - uy, sz - uz
             reach = arrays.sphere_radii[s] + arrays.sphere_radii[u] + margin + SLACK
             if reach > 0.0:
                 apart &= at_least8(dx * dx + dy * dy + dz * dz, reach * reach)
@@ -279,53 +273,52 @@ def _coarse_pair_clear(
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _tables_read(
-    arrays: ValidityArrays, margin: float, values: FloatArray, proved: npt.NDArray[np.int64], cleared: int
-) -> int:
+def _tables_read(arrays: ValidityArrays, margin: float, buffers: LaneBuffers, cleared: int) -> int:
     """Of the lanes ``cleared``, those no pair table proves colliding; per self pair, the lanes its
-    table proves clear into ``proved`` (each proof where the kernel uses it). Read before the
-    kinematics, as the kernel reads them: a configuration a table rejects costs nothing more."""
-    pairs = arrays.group_pairs
+    table proves clear into ``buffers.proved`` (each proof where the kernel uses it). Read before
+    the kinematics, as the kernel reads them: a configuration a table rejects costs nothing more."""
     clear_usable, colliding_usable = margin <= arrays.table_margin, margin >= arrays.table_margin
-    for k in range(pairs.shape[0]):
-        proved[k] = 0
-        t = pairs[k, 2]
+    for k in range(arrays.group_pairs.shape[0]):
+        buffers.proved[k] = 0
+        t = arrays.group_pairs[k, 2]
         if t < 0:
             continue
-        states = _table_states(values, t, arrays)
+        states = _table_states(buffers.values, t, arrays)
         if clear_usable:
-            proved[k] = at_least8(states, 0.5)
+            buffers.proved[k] = at_least8(states, 0.5)
         if colliding_usable:
             cleared &= ~less8(states, -0.5)
     return cleared
 
 
 @numba.njit(cache=True, fastmath=True, forceinline=True)
-def _self_pairs_clear(
-    arrays: ValidityArrays,
-    margin: float,
-    poses: FloatArray,
-    group_world: FloatArray,
-    proved_by_table: npt.NDArray[np.int64],
-    cleared: int,
-) -> int:
+def _bounds_near(k: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers) -> int:
+    """The lanes where self pair ``k``'s two group bounds come within their radii and the margin
+    (none when the margin makes the pair empty: the kernel checks no such pair)."""
+    g, h = arrays.group_pairs[k, 0], arrays.group_pairs[k, 1]
+    reach = arrays.group_radii[g] + arrays.group_radii[h] + margin + SLACK
+    if reach <= SLACK:
+        return 0
+    world = buffers.group_world
+    dx = load8(world, g * 3 * LANES) - load8(world, h * 3 * LANES)
+    dy = load8(world, (g * 3 + 1) * LANES) - load8(world, (h * 3 + 1) * LANES)
+    dz = load8(world, (g * 3 + 2) * LANES) - load8(world, (h * 3 + 2) * LANES)
+    near: int = less8(dx * dx + dy * dy + dz * dz, reach * reach)
+    return near
+
+
+@numba.njit(cache=True, fastmath=True, forceinline=True)
+def _self_pairs_clear(arrays: ValidityArrays, margin: float, buffers: LaneBuffers, cleared: int) -> int:
     """Of the lanes ``cleared``, those where each self pair is proved clear by its table
     (`_tables_read`), its groups' bounds or their coarse spheres."""
-    pairs, radii = arrays.group_pairs, arrays.group_radii
-    for k in range(pairs.shape[0]):
-        doubtful = cleared & ~proved_by_table[k]
+    for k in range(arrays.group_pairs.shape[0]):
+        doubtful = cleared & ~buffers.proved[k]
         if doubtful == 0:
             continue
-        g, h = pairs[k, 0], pairs[k, 1]
-        reach = radii[g] + radii[h] + margin + SLACK
-        if reach <= SLACK:
-            continue  # the kernel checks no pair its margin makes empty
-        dx = load8(group_world, g * 3 * LANES) - load8(group_world, h * 3 * LANES)
-        dy = load8(group_world, (g * 3 + 1) * LANES) - load8(group_world, (h * 3 + 1) * LANES)
-        dz = load8(group_world, (g * 3 + 2) * LANES) - load8(group_world, (h * 3 + 2) * LANES)
-        doubtful &= less8(dx * dx + dy * dy + dz * dz, reach * reach)
+        doubtful &= _bounds_near(k, arrays, margin, buffers)
         if _count(doubtful) >= FALLBACK_LANES:
-            cleared &= ~doubtful | _coarse_pair_clear(g, h, doubtful, arrays, margin, poses, group_world)
+            g, h = arrays.group_pairs[k, 0], arrays.group_pairs[k, 1]
+            cleared &= ~doubtful | _coarse_pair_clear(g, h, doubtful, arrays, margin, buffers)
         elif doubtful:
             cleared &= ~doubtful
             if cleared == 0:
@@ -335,46 +328,44 @@ def _self_pairs_clear(
 
 @numba.njit(cache=True, fastmath=True)
 def lanes_cleared(
-    qs: FloatArray, first: int, arrays: ValidityArrays, margin: float, lanes: LaneBuffers
+    qs: FloatArray, first: int, arrays: ValidityArrays, margin: float, buffers: LaneBuffers
 ) -> int:
     """Screen rows ``first`` .. ``first + LANES`` of ``qs`` (past its end, the lanes repeat its last
-    row): bit ``k`` set when row ``first + k`` is cleared, a configuration the kernel accepts."""
-    values = lanes.values
+    row): bit ``k`` set when row ``first + k`` is cleared, a configuration the kernel accepts.
+    Each step takes the buffers whole and reads a field where it uses it (`buffers`)."""
     rows = min(LANES, qs.shape[0] - first)
     for lane in range(LANES):
         row = first + min(lane, rows - 1)
         for j in range(qs.shape[1]):
-            values[j * LANES + lane] = qs[row, j]
-    # Each step takes the buffers it uses: a compiled call counts a reference to each array it is
-    # passed (`buffers`).
-    poses, group_world, proved = lanes.poses, lanes.group_world, lanes.proved
-    cleared = _tables_read(arrays, margin, values, proved, within_limits(values, arrays.lower, arrays.upper))
+            buffers.values[j * LANES + lane] = qs[row, j]
+    cleared = within_limits(buffers.values, arrays.lower, arrays.upper)
+    cleared = _tables_read(arrays, margin, buffers, cleared)
     if cleared == 0:
         return 0
-    lane_link_poses(arrays, values, lanes.sines, lanes.cosines, poses)
-    cleared = _obstacles_clear(arrays, margin, poses, group_world, cleared)
-    return int(_self_pairs_clear(arrays, margin, poses, group_world, proved, cleared) & ((1 << rows) - 1))
+    lane_link_poses(arrays, buffers.values, buffers.sines, buffers.cosines, buffers.poses)
+    cleared = _obstacles_clear(arrays, margin, buffers, cleared)
+    return int(_self_pairs_clear(arrays, margin, buffers, cleared) & ((1 << rows) - 1))
 
 
 @numba.njit(cache=True)
 def first_invalid_in_lanes(
-    qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch, lanes: LaneBuffers
+    qs: FloatArray, arrays: ValidityArrays, margin: float, scratch: ValidityScratch, buffers: LaneBuffers
 ) -> int:
     """The first row of ``qs`` the validity kernel rejects, or -1: ``LANES`` rows at a time screened
     (`lanes_cleared`), the rows not cleared checked by `valid_rows` (working in ``scratch``)."""
     for first in range(0, qs.shape[0], LANES):
-        cleared = lanes_cleared(qs, first, arrays, margin, lanes)
+        cleared = lanes_cleared(qs, first, arrays, margin, buffers)
         count = 0
         for lane in range(min(LANES, qs.shape[0] - first)):
             if not cleared >> lane & 1:
                 for j in range(qs.shape[1]):
-                    lanes.left[count, j] = qs[first + lane, j]
-                lanes.left_rows[count] = first + lane
+                    buffers.left[count, j] = qs[first + lane, j]
+                buffers.left_rows[count] = first + lane
                 count += 1
         if count == 0:
             continue
-        valid = valid_rows(lanes.left[:count], arrays, margin, True, scratch)
+        valid = valid_rows(buffers.left[:count], arrays, margin, True, scratch)
         for i in range(count):
             if not valid[i]:
-                return int(lanes.left_rows[i])
+                return int(buffers.left_rows[i])
     return -1
