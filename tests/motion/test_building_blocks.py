@@ -22,6 +22,7 @@ from kitchen_tamp.motion import (
     resample_path,
 )
 from kitchen_tamp.motion.sampling.configuration_tree import ConfigurationTree
+from kitchen_tamp.motion.segment_checking import raked_order
 from tests.motion.toy_worlds import BoxBallWorld
 
 WALL = BoxBallWorld(boxes=[((0.45, 0.0), (0.55, 1.0))])
@@ -84,6 +85,19 @@ def test_free_prefix_stops_before_the_wall_on_resolution_multiples() -> None:
     assert free == pytest.approx(0.44)  # the last free point before x = 0.45
     assert checker.configurations_checked == 16 + 32  # batches of 16, 32 reach x = 0.45
     assert checker.free_prefix_length(np.array([0.0, 0.5]), np.array([0.3, 0.5])) == 0.3
+
+
+def test_a_raked_free_prefix_visits_each_block_end_first_and_stops_on_whole_blocks() -> None:
+    order = raked_order(23, 10)
+    assert sorted(order) == list(range(23))
+    assert list(order[:3]) == [9, 7, 3] and list(order[10:12]) == [19, 17]  # ends first, then coarse to fine
+    assert list(order[20:]) == [22, 21, 20]  # a last, shorter block
+    checker = CountingSegmentChecker(WALL, 0.01)
+    q0, q1 = np.array([0.0, 0.5]), np.array([1.0, 0.5])
+    assert checker.free_prefix_length(q0, q1, 20) == pytest.approx(0.40)  # blocks end at 0.2, 0.4, 0.6
+    assert checker.configurations_checked == 16 + 32  # the third block's third point (x = 0.48), second batch
+    assert checker.free_prefix_length(q0, q1, 45) == 0.0  # the wall at x = 0.45 is in the first block
+    assert checker.free_prefix_length(q0, np.array([0.3, 0.5]), 20) == 0.3
 
 
 def test_resample_and_densify_keep_endpoints_and_length() -> None:

@@ -163,7 +163,8 @@ def test_compiled_segments_check_what_the_batches_check_and_count_alike(
         assert compiled.segment_valid(
             q0, q1, check_start=ends[0], check_end=ends[1]
         ) == batched.segment_valid(q0, q1, check_start=ends[0], check_end=ends[1])
-        assert compiled.free_prefix_length(q0, q1) == batched.free_prefix_length(q0, q1)
+        for block in (1, 7, 100):
+            assert compiled.free_prefix_length(q0, q1, block) == batched.free_prefix_length(q0, q1, block)
         assert compiled.configurations_checked == batched.configurations_checked
 
 
@@ -197,6 +198,5 @@ def test_one_scratch_serves_many_calls_with_each_calls_verdicts(
             q0, q1, intervals, True, True
         )
         distance = float(np.linalg.norm(q1 - q0))
-        assert FREE_PREFIX_IN(q0, q1, distance, 0.01, arrays, margin, scratch) == spheres.free_prefix_checked(
-            q0, q1, distance, 0.01
-        )
+        in_scratch = FREE_PREFIX_IN(q0, q1, distance, 0.01, 30, arrays, margin, scratch)
+        assert in_scratch == spheres.free_prefix_checked(q0, q1, distance, 0.01, 30)

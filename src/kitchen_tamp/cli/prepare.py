@@ -109,7 +109,7 @@ def _compile_segments(checker: SphereCollisionChecker, home: npt.NDArray[np.floa
     five CPU seconds."""
     away = home + np.eye(len(home))[0] * 0.5
     checker.segment_checked(home, away, 50, True, True)
-    checker.free_prefix_checked(home, away, 0.5, 0.01)
+    checker.free_prefix_checked(home, away, 0.5, 0.01, 10)
 
 
 def _compile_shortcut_steps(checker: SphereCollisionChecker, home: npt.NDArray[np.float64]) -> None:

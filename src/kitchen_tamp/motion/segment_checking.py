@@ -15,8 +15,9 @@ import math
 from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
+import numpy.typing as npt
 
-from kitchen_tamp.joint_spacing import interior_fractions, interval_count
+from kitchen_tamp.joint_spacing import coarse_to_fine_order, interior_fractions, interval_count
 from kitchen_tamp.motion.collision_checker import (
     CollisionChecker,
     JointConfiguration,
@@ -36,6 +37,29 @@ def _batches(count: int) -> tuple[slice, ...]:
         batches.append(slice(start, min(count, start + size)))
         start, size = start + size, size * 2
     return tuple(batches)
+
+
+def raked_order(count: int, block: int) -> npt.NDArray[np.intp]:
+    """The order a free prefix's ``count`` configurations are visited in: block by block from the
+    near end, ``block`` configurations each, each block's last first, then its others coarse to
+    fine (a colliding block is usually found out within its first few). One configuration a
+    block visits them outward."""
+    order = np.empty(count, dtype=np.intp)
+    row = 0
+    for start in range(0, count, block):
+        stop = min(count, start + block)
+        order[row] = stop - 1
+        interior = stop - start - 1
+        order[row + 1 : row + 1 + interior] = start + coarse_to_fine_order(interior)
+        row += 1 + interior
+    return order
+
+
+def blocks_free_length(lengths: npt.NDArray[np.float64], first_invalid: int, block: int) -> float:
+    """How far is free in whole blocks when ``lengths``' configuration ``first_invalid`` is the
+    nearest colliding one: the end of the last block before the one holding it."""
+    free_blocks = first_invalid // block
+    return float(lengths[free_blocks * block - 1]) if free_blocks else 0.0
 
 
 @runtime_checkable
@@ -64,9 +88,10 @@ class CompiledSegments(Protocol):
         ...
 
     def free_prefix_checked(
-        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float, block: int
     ) -> tuple[float, int]:
-        """(the free length from q0 toward q1, configurations counted)."""
+        """(the free length from q0 toward q1 in whole blocks, configurations counted), as
+        `CountingSegmentChecker.free_prefix_length`."""
         ...
 
 
@@ -139,28 +164,29 @@ class CountingSegmentChecker:
                 return False
         return True
 
-    def free_prefix_length(self, q0: JointConfiguration, q1: JointConfiguration) -> float:
-        """How far from q0 toward q1 one can go before the first collision.
+    def free_prefix_length(self, q0: JointConfiguration, q1: JointConfiguration, block: int = 1) -> float:
+        """How far from q0 toward q1 one can go before the first collision, in whole blocks.
 
-        `q0` is assumed valid. Configurations are checked exactly
-        `resolution` apart from q0 (then q1 itself), nearest first, so any
-        prefix ending at a multiple of `resolution` has been checked on the
-        same points `segment_valid` would use for it. Returns the full
-        distance when q1 is reached, else the last free multiple of `resolution`.
+        `q0` is assumed valid. The configurations lie exactly `resolution` apart from q0 (then q1
+        itself), so any prefix ending at a multiple of `resolution` has been checked on the same
+        points `segment_valid` would use for it. They are visited block by block, ``block`` of them
+        each (`raked_order`). Returns the full distance when q1 is reached, else the end of the
+        last block before the one holding the nearest collision (with blocks of one, the last
+        free multiple of `resolution`).
         """
         distance = float(np.linalg.norm(q1 - q0))
         if distance == 0.0:
             return 0.0
         if self._compiled is not None:
-            length, checked = self._compiled.free_prefix_checked(q0, q1, distance, self.resolution)
+            length, checked = self._compiled.free_prefix_checked(q0, q1, distance, self.resolution, block)
             self.configurations_checked += checked
             return length
         lengths = np.append(np.arange(1, math.ceil(distance / self.resolution)), distance / self.resolution)
         lengths *= self.resolution
+        order = raked_order(len(lengths), block)
         for batch in _batches(len(lengths)):
-            qs = q0 + (lengths[batch, np.newaxis] / distance) * (q1 - q0)
+            qs = q0 + (lengths[order[batch], np.newaxis] / distance) * (q1 - q0)
             first_in_batch = self.first_invalid(qs)
             if first_in_batch is not None:
-                first_invalid = batch.start + first_in_batch
-                return float(lengths[first_invalid - 1]) if first_invalid else 0.0
+                return blocks_free_length(lengths, int(order[batch.start + first_in_batch]), block)
         return distance

@@ -73,12 +73,14 @@ def connect_tree(
 ) -> tuple[int, bool]:
     """Step from the nearest node toward `target` until it is reached or a step collides.
 
-    The straight line is checked in one sweep from the near end, at points
-    exactly one resolution apart; nodes are added every `step_size` (rounded
-    to whole resolutions) along its free part, so every new edge has been
-    checked on the same points as its own segment check. The last, shorter
-    edge into `target` is checked on its own. Returns the last node's index
-    and whether it is `target` (valid, as the caller vouches).
+    The straight line is checked from the near end at points exactly one
+    resolution apart, a step (`step_size`, rounded to whole resolutions) at a
+    time, each step's far end first, then its other points coarse to fine
+    (`CountingSegmentChecker.free_prefix_length`); nodes are added at the
+    end of every free step, so every new edge has been checked on the same
+    points as its own segment check. The last, shorter edge into `target` is
+    checked on its own. Returns the last node's index and whether it is
+    `target` (valid, as the caller vouches).
     """
     near = tree.nearest(target)
     q_near = tree.node(near)
@@ -86,9 +88,9 @@ def connect_tree(
     if distance == 0.0:
         return near, True
     resolution = segments.resolution
-    free_length = segments.free_prefix_length(q_near, target)
-    reached = free_length >= distance
     resolutions_per_step = max(1, round(step_size / resolution))
+    free_length = segments.free_prefix_length(q_near, target, resolutions_per_step)
+    reached = free_length >= distance
     if reached:
         steps = math.ceil(distance / (resolutions_per_step * resolution)) - 1
     else:

@@ -164,12 +164,12 @@ def _connect(
     distance = joint_distance(q_near, target)
     if distance == 0.0:
         return near, True
+    resolutions_per_step = max(1, round(step_size / resolution))
     free_length, checked = free_prefix_checked_in(
-        q_near, target, distance, resolution, arrays, margin, scratch
+        q_near, target, distance, resolution, resolutions_per_step, arrays, margin, scratch
     )
     counters[COUNTER_CHECKS] += checked
     reached = free_length >= distance
-    resolutions_per_step = max(1, round(step_size / resolution))
     if reached:
         steps = math.ceil(distance / (resolutions_per_step * resolution)) - 1
     else:

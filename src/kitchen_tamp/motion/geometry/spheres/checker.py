@@ -153,7 +153,7 @@ class SphereCollisionChecker:
         return bool(free), int(checked)
 
     def free_prefix_checked(
-        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float, block: int
     ) -> tuple[float, int]:
         """`CompiledSegments.free_prefix_checked` in one compiled call (`sphere_segments`)."""
         from kitchen_tamp.motion.geometry.spheres.kernels.segments import free_prefix_checked
@@ -161,7 +161,7 @@ class SphereCollisionChecker:
         start, end = np.ascontiguousarray(q0, dtype=float), np.ascontiguousarray(q1, dtype=float)
         arrays, margin = self.compiled_validity()
         kernel: Any = free_prefix_checked  # numba's dispatcher stubs take no argument list
-        length, checked = kernel(start, end, distance, resolution, arrays, margin)
+        length, checked = kernel(start, end, distance, resolution, block, arrays, margin)
         return float(length), int(checked)
 
     def is_valid_without_padding(self, qs: JointConfigurations) -> ValidityMask:

@@ -26,7 +26,7 @@ from kitchen_tamp.motion.collision_checker import (
     JointConfigurations,
     ValidityMask,
 )
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker
+from kitchen_tamp.motion.segment_checking import CountingSegmentChecker, blocks_free_length
 
 if TYPE_CHECKING:  # the real import loads numba; a screened checker is only built from a sphere model
     from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
@@ -253,10 +253,10 @@ class EndConfirmedChecker(Generic[Exact]):
         return self.first_invalid(states) is None, checked + len(states)
 
     def free_prefix_checked(
-        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float
+        self, q0: JointConfiguration, q1: JointConfiguration, distance: float, resolution: float, block: int
     ) -> tuple[float, int]:
         """`CompiledSegments.free_prefix_checked`, with the exact model deciding near an end."""
-        length, checked = self.spheres.free_prefix_checked(q0, q1, distance, resolution)
+        length, checked = self.spheres.free_prefix_checked(q0, q1, distance, resolution, block)
         if length >= distance or not self._segment_nears_ends(q0, q1):
             return length, checked
         lengths = (
@@ -265,7 +265,7 @@ class EndConfirmedChecker(Generic[Exact]):
         first = self.first_invalid(q0 + (lengths[:, np.newaxis] / distance) * (q1 - q0))
         if first is None:
             return distance, checked + len(lengths)
-        return (float(lengths[first - 1]) if first else 0.0), checked + len(lengths)
+        return blocks_free_length(lengths, first, block), checked + len(lengths)
 
     def segment_valid(self, q0: JointConfiguration, q1: JointConfiguration) -> bool:
         return self._segments.segment_valid(np.asarray(q0, dtype=float), np.asarray(q1, dtype=float))

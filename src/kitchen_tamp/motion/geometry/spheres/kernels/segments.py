@@ -2,7 +2,8 @@
 
 `segment_checked` and `free_prefix_checked` visit exactly the configurations
 `kitchen_tamp.motion.segment_checking.CountingSegmentChecker` visits, in its order (endpoints,
-then the interior coarse to fine; or outward from ``q0`` at multiples of the resolution), and
+then the interior coarse to fine; or at multiples of the resolution from ``q0``, block by block,
+each block's last first, then its others coarse to fine: `segment_checking.raked_order`), and
 return its verdict and the count it would report (the rows of its batches, which start at
 ``FIRST_BATCH_SIZE`` and double, up to the batch holding the first collision). They differ only
 in cost: one call instead of a Python loop of batches, and the validity kernel stops at the first
@@ -35,22 +36,44 @@ FloatArray = npt.NDArray[np.float64]
 
 
 @numba.njit(cache=True)
-def coarse_to_fine_fractions(intervals: int) -> FloatArray:
-    """`kitchen_tamp.joint_spacing.interior_fractions` for ``intervals`` intervals: the interior
-    positions 1 .. intervals - 1 ordered by their lowest set bit, highest first, ascending within
-    one bit (the odd multiples of each power of two, the largest power first)."""
+def coarse_to_fine_positions(intervals: int) -> npt.NDArray[np.int64]:
+    """The interior positions 1 .. intervals - 1 ordered by their lowest set bit, highest first,
+    ascending within one bit (the odd multiples of each power of two, the largest power first):
+    `kitchen_tamp.joint_spacing.coarse_to_fine_order`, plus one."""
     count = intervals - 1
-    fractions = np.empty(max(count, 0))
+    positions = np.empty(max(count, 0), dtype=np.int64)
     bit = 1
     while 2 * bit <= count:
         bit *= 2
     row = 0
     while bit >= 1:
         for position in range(bit, count + 1, 2 * bit):
-            fractions[row] = position / intervals
+            positions[row] = position
             row += 1
         bit //= 2
-    return fractions
+    return positions
+
+
+@numba.njit(cache=True)
+def coarse_to_fine_fractions(intervals: int) -> FloatArray:
+    """`kitchen_tamp.joint_spacing.interior_fractions` for ``intervals`` intervals."""
+    return coarse_to_fine_positions(intervals) / intervals
+
+
+@numba.njit(cache=True)
+def raked_order(count: int, block: int) -> npt.NDArray[np.int64]:
+    """`kitchen_tamp.motion.segment_checking.raked_order`: block by block, each block's last
+    configuration first, then its others coarse to fine."""
+    order = np.empty(count, dtype=np.int64)
+    row = 0
+    for start in range(0, count, block):
+        stop = min(count, start + block)
+        order[row] = stop - 1
+        row += 1
+        for position in coarse_to_fine_positions(stop - start):
+            order[row] = start + position - 1
+            row += 1
+    return order
 
 
 @numba.njit(cache=True)
@@ -147,6 +170,7 @@ def free_prefix_checked_in(
     q1: FloatArray,
     distance: float,
     resolution: float,
+    block: int,
     arrays: ValidityArrays,
     margin: float,
     scratch: ValidityScratch,
@@ -158,20 +182,29 @@ def free_prefix_checked_in(
     for k in range(count - 1):
         lengths[k] = float(k + 1) * resolution
     lengths[count - 1] = (distance / resolution) * resolution
+    order = raked_order(count, block)
     shares = np.empty(count)
     for i in range(count):
-        shares[i] = lengths[i] / distance
+        shares[i] = lengths[order[i]] / distance
     first, checked = _first_invalid_in_batches(q0, q1, shares, arrays, margin, scratch)
     if first < 0:
         return distance, checked
-    return (lengths[first - 1] if first > 0 else 0.0), checked
+    free_blocks = order[first] // block
+    return (lengths[free_blocks * block - 1] if free_blocks > 0 else 0.0), checked
 
 
 @numba.njit(cache=True)
 def free_prefix_checked(
-    q0: FloatArray, q1: FloatArray, distance: float, resolution: float, arrays: ValidityArrays, margin: float
+    q0: FloatArray,
+    q1: FloatArray,
+    distance: float,
+    resolution: float,
+    block: int,
+    arrays: ValidityArrays,
+    margin: float,
 ) -> tuple[float, int]:
-    """(how far from q0 toward q1 is free before the first collision, configurations counted):
-    configurations at every multiple of ``resolution`` from q0, then q1 (``distance`` away)."""
+    """(how far from q0 toward q1 is free in whole blocks of ``block`` configurations before the
+    first collision, configurations counted): configurations at every multiple of ``resolution``
+    from q0, then q1 (``distance`` away), visited in `raked_order`."""
     scratch = validity_scratch(arrays, q0.shape[0])
-    return free_prefix_checked_in(q0, q1, distance, resolution, arrays, margin, scratch)
+    return free_prefix_checked_in(q0, q1, distance, resolution, block, arrays, margin, scratch)
