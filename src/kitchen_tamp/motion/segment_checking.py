@@ -55,6 +55,13 @@ def raked_order(count: int, block: int) -> npt.NDArray[np.intp]:
     return order
 
 
+def prefix_lengths(distance: float, resolution: float) -> npt.NDArray[np.float64]:
+    """How far from its start each configuration of a free prefix ``distance`` long lies: every
+    multiple of ``resolution`` short of ``distance``, then ``distance`` itself."""
+    lengths = np.append(np.arange(1, math.ceil(distance / resolution)), distance / resolution)
+    return np.asarray(lengths * resolution, dtype=np.float64)
+
+
 def blocks_free_length(lengths: npt.NDArray[np.float64], first_invalid: int, block: int) -> float:
     """How far is free in whole blocks when ``lengths``' configuration ``first_invalid`` is the
     nearest colliding one: the end of the last block before the one holding it."""
@@ -181,8 +188,7 @@ class CountingSegmentChecker:
             length, checked = self._compiled.free_prefix_checked(q0, q1, distance, self.resolution, block)
             self.configurations_checked += checked
             return length
-        lengths = np.append(np.arange(1, math.ceil(distance / self.resolution)), distance / self.resolution)
-        lengths *= self.resolution
+        lengths = prefix_lengths(distance, self.resolution)
         order = raked_order(len(lengths), block)
         for batch in _batches(len(lengths)):
             qs = q0 + (lengths[order[batch], np.newaxis] / distance) * (q1 - q0)

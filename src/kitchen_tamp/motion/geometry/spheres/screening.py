@@ -13,7 +13,6 @@ as long as the spheres model the same scene with the same margin.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Generic, Protocol, TypeVar
@@ -26,7 +25,11 @@ from kitchen_tamp.motion.collision_checker import (
     JointConfigurations,
     ValidityMask,
 )
-from kitchen_tamp.motion.segment_checking import CountingSegmentChecker, blocks_free_length
+from kitchen_tamp.motion.segment_checking import (
+    CountingSegmentChecker,
+    blocks_free_length,
+    prefix_lengths,
+)
 
 if TYPE_CHECKING:  # the real import loads numba; a screened checker is only built from a sphere model
     from kitchen_tamp.motion.geometry.spheres.checker import SphereCollisionChecker
@@ -259,9 +262,7 @@ class EndConfirmedChecker(Generic[Exact]):
         length, checked = self.spheres.free_prefix_checked(q0, q1, distance, resolution, block)
         if length >= distance or not self._segment_nears_ends(q0, q1):
             return length, checked
-        lengths = (
-            np.append(np.arange(1, math.ceil(distance / resolution)), distance / resolution) * resolution
-        )
+        lengths = prefix_lengths(distance, resolution)
         first = self.first_invalid(q0 + (lengths[:, np.newaxis] / distance) * (q1 - q0))
         if first is None:
             return distance, checked + len(lengths)
